@@ -1,0 +1,16 @@
+//! shoal — localization-aware path planning for one USV and N AUVs, after Eskandari, Savkin and
+//! Deghat, "Integrated Localization and Path Planning for an Ocean Exploring Team of Autonomous
+//! Underwater Vehicles with Consensus Graph Model Predictive Control" (`../shared/paper.md`).
+//!
+//! Module map (paper ↔ code):
+//! - [`scenario`]: every parameter (Section V defaults), TOML loading and validation.
+//! - [`seafloor`]: Z(x, y), bilinear, gradient, segment query 𝓛_r, ESRI ASCII, synthetic floor.
+//! - [`vehicle`]: AUV model eqs. (5)–(8) (zero-order hold or Euler), USV model eq. (9).
+//! - [`step1`]: Step 1, problem P2, solved by [`scp`] (SCvx trust region) over [`conic`] (Clarabel).
+//! - [`plan`]: the plan file (`shoal-plan/1`); [`output`]: atomic writing of plan.json and CSVs.
+//! - [`check`]: independent verification of a plan against the seafloor.
+
+pub mod plan;
+pub mod scenario;
+pub mod seafloor;
+pub mod vehicle;

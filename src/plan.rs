@@ -1,0 +1,157 @@
+//! The plan file, format `shoal-plan/1` (documented field by field in docs/plan-format.md).
+//!
+//! Index conventions: a window has K steps; positions and velocities are given for k = 0..=K
+//! (K + 1 entries, k = 0 is the window's initial state), inputs for k = 0..K−1 (K entries; input
+//! k acts from step k to step k + 1). Times are t = window_start + k·δ seconds.
+
+use crate::scenario::Scenario;
+use serde::{Deserialize, Serialize};
+
+/// Value of the `format` field of every plan this version writes.
+pub const FORMAT: &str = "shoal-plan/1";
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    pub format: String,
+    /// Version of shoal that wrote the plan.
+    pub shoal_version: String,
+    /// Where the scenario came from: "embedded default" or the path of the file.
+    pub scenario_source: String,
+    /// Overrides given with `--set`, in order, as "key=value".
+    pub overrides: Vec<String>,
+    /// The fully resolved scenario: every parameter, including the seed.
+    pub scenario: Scenario,
+    pub seafloor: SeafloorRecord,
+    /// Discrete models actually used (derived from the scenario; recorded for readers).
+    pub model: ModelRecord,
+    /// State at the start of window 0.
+    pub initial: InitialState,
+    pub windows: Vec<Window>,
+}
+
+/// Where the floor came from and a fingerprint of its grid, so a checker can tell it has the
+/// same floor the plan was made on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SeafloorRecord {
+    /// "synthetic" (regenerated from scenario.seafloor.synthetic and scenario.seed) or "file".
+    pub source: String,
+    /// Path of the grid file when source = "file".
+    pub path: Option<String>,
+    pub nx: usize,
+    pub ny: usize,
+    /// Centre of the south-west grid node, metres.
+    pub x0: f64,
+    pub y0: f64,
+    /// Node spacing, metres.
+    pub dx: f64,
+    pub dy: f64,
+    /// Shallowest and deepest node elevation, metres.
+    pub z_min: f64,
+    pub z_max: f64,
+    /// Hex digest of the node values (see `Seafloor::fingerprint`).
+    pub fingerprint: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModelRecord {
+    /// Damping rates of E' (1/s): surge, heave, yaw.
+    pub damping: crate::vehicle::Damping,
+    /// Discrete AUV model coefficients per axis.
+    pub auv: crate::vehicle::AuvModel,
+    pub usv: crate::vehicle::UsvModel,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct InitialState {
+    /// "seeded" (drawn from the seed, Algorithm 1 line 5) or "explicit" (from the scenario).
+    pub origin: String,
+    pub usv: [f64; 2],
+    pub auvs: Vec<AuvState>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct AuvState {
+    pub position: [f64; 3],
+    pub velocity: [f64; 3],
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Window {
+    pub index: usize,
+    /// Time of step k = 0 of this window, seconds since the start of the mission.
+    pub start_time: f64,
+    /// Step 1 (problem P2).
+    pub step1: Stage,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Stage {
+    /// "converged", or "max_iterations" when the SCP stopped at its iteration limit with a
+    /// feasible iterate.
+    pub status: String,
+    pub iterations: usize,
+    /// Wall-clock time of the stage, seconds.
+    pub solve_time_s: f64,
+    pub objective: ObjectiveTerms,
+    /// Largest violation of a nonconvex constraint at the returned iterate (metres or radians).
+    pub max_violation: f64,
+    pub usv: UsvPath,
+    pub auvs: Vec<AuvPath>,
+    /// One record per SCP iteration.
+    pub scp: Vec<ScpIteration>,
+}
+
+/// The objective terms of P2, unweighted, and the weighted total.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+pub struct ObjectiveTerms {
+    /// OF1_1: Σ_k Σ_n ‖U_n[k]‖², (m/s²)².
+    pub energy: f64,
+    /// OF1_2: Σ_k Σ_n z_n[k], metres (k = 1..K).
+    pub depth: f64,
+    /// OF1_8: ‖P_USV[K] − P_USV[0]‖², m² (objective "away"), or OF1_8_2: ‖P_USV[K] − dest‖², m².
+    pub usv: f64,
+    /// w1·energy + w2·depth − w8·usv (away) or + w8_2·usv (destination).
+    pub total: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UsvPath {
+    /// P_USV[k], k = 0..=K.
+    pub position: Vec<[f64; 2]>,
+    /// U_USV[k] (velocity, m/s), k = 0..K−1.
+    pub input: Vec<[f64; 2]>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AuvPath {
+    /// P_n[k], k = 0..=K.
+    pub position: Vec<[f64; 3]>,
+    /// V_n[k], k = 0..=K.
+    pub velocity: Vec<[f64; 3]>,
+    /// U_n[k] (m/s²), k = 0..K−1.
+    pub input: Vec<[f64; 3]>,
+    /// Surge speed v_x[k] = ‖(V_x, V_y)‖, k = 0..=K.
+    pub surge_speed: Vec<f64>,
+    /// Heading ψ[k] = atan2(V_y, V_x) in radians, or null where the horizontal speed is below
+    /// auv.min_heading_speed (heading undefined), k = 0..=K.
+    pub heading: Vec<Option<f64>>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ScpIteration {
+    /// Trust-region radius used by this iteration's convex subproblem, metres.
+    pub trust_region: f64,
+    /// Merit (objective + penalty·violation) at the reference and at the candidate.
+    pub merit_before: f64,
+    pub merit_after: f64,
+    /// Decrease predicted by the convex model.
+    pub predicted: f64,
+    /// ρ = actual / predicted decrease.
+    pub ratio: f64,
+    pub accepted: bool,
+    /// Largest true constraint violation of the candidate.
+    pub violation: f64,
+    /// Clarabel's status and time for the subproblem.
+    pub solver_status: String,
+    pub solver_time_s: f64,
+}

@@ -1,0 +1,302 @@
+//! Scenario: every parameter of a planning run, with defaults equal to the paper's experiment
+//! (Section V: N = 5 AUVs, K = 20 steps, δ = 100 s, d_s = 150 m). Where the paper gives no number
+//! the default is ours and the comment says why.
+
+use serde::{Deserialize, Serialize};
+
+/// A full, resolved scenario. Every field has a default, so an empty file is a valid scenario.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scenario {
+    /// Seed of every random draw (initial AUV positions, synthetic seafloor).
+    pub seed: u64,
+    /// Number of receding-horizon windows planned one after another (Algorithm 1, for_1).
+    pub windows: usize,
+    pub team: Team,
+    pub horizon: Horizon,
+    pub acoustic: Acoustic,
+    pub auv: Auv,
+    pub usv: Usv,
+    pub weights: Weights,
+    pub seafloor: SeafloorSpec,
+    pub scp: Scp,
+    /// Explicit initial state; when absent it is drawn from `seed` (Algorithm 1, line 5).
+    pub initial: Option<Initial>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Team {
+    /// N, the number of AUVs (paper: 5 and 7).
+    pub auvs: usize,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Horizon {
+    /// K, time steps per window (paper: 20).
+    pub steps: usize,
+    /// δ, sampling time in seconds (paper: 100 s).
+    pub dt: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Acoustic {
+    /// d_s, sonar (acoustic modem) range in metres (paper: 150 m).
+    pub sonar_range: f64,
+    /// d_t, tolerance of the link-length band [d_s − d_t, d_s] of C5_2/C5_3, metres.
+    pub band_tolerance: f64,
+    /// d_max, largest allowed AUV–USV distance at any step (C1_5), metres. Must be ≥ d_s.
+    pub max_range: f64,
+    /// r, resolution of the segment / line-of-sight sampling 𝓛_r, metres.
+    pub resolution: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Discretisation {
+    /// Exact zero-order-hold discretisation of eqs. (5)–(7) (our default; always stable).
+    Zoh,
+    /// The paper's forward Euler, eq. (8); refused when |1 − δ·E'| > 1 (unstable).
+    Euler,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Auv {
+    /// V_max of C1_7, m/s.
+    pub max_speed: f64,
+    /// ψ̇_max of C1_14, rad/s.
+    pub max_heading_rate: f64,
+    /// Horizontal speed (m/s) below which heading is undefined and C1_14 is not applied.
+    pub min_heading_speed: f64,
+    /// ε of C2_2: clearance above the seafloor, metres.
+    pub floor_clearance: f64,
+    /// C1_4: AUVs stay at least this far below the surface (z ≤ −surface_clearance), metres.
+    pub surface_clearance: f64,
+    pub discretisation: Discretisation,
+    /// m, rigid-body mass, kg.
+    pub mass: f64,
+    /// γ_v̇x (X_u̇), surge added mass, kg (negative by Fossen's sign convention).
+    pub added_mass_surge: f64,
+    /// γ_v̇z (Z_ẇ), heave added mass, kg (negative).
+    pub added_mass_heave: f64,
+    /// γ_vx (X_u), linear surge damping, kg/s (negative).
+    pub damping_surge: f64,
+    /// γ_vz (Z_w), linear heave damping, kg/s (negative).
+    pub damping_heave: f64,
+    /// J_z, yaw moment of inertia, kg·m².
+    pub inertia_yaw: f64,
+    /// N_ṙ, yaw added inertia, kg·m² (negative).
+    pub added_inertia_yaw: f64,
+    /// γ_ωz (N_r), linear yaw damping, kg·m²/s (negative).
+    pub damping_yaw: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum UsvObjective {
+    /// OF1_8: move away from the start point (concave; linearised each SCP iteration).
+    Away,
+    /// OF1_8_2: go towards `destination` (convex).
+    Destination,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Usv {
+    /// Speed limit of eq. (9)'s velocity input, m/s.
+    pub max_speed: f64,
+    pub objective: UsvObjective,
+    /// P_USV[∞] of OF1_8_2, metres (x east, y north). Used when objective = "destination".
+    pub destination: [f64; 2],
+    /// Direction (rad, from +x towards +y) of the first guess of the USV path, about which the
+    /// concave OF1_8 is first linearised (its gradient at "not moved" is zero).
+    pub initial_heading: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Weights {
+    /// w1 · OF1_1, input energy Σ‖U‖², per (m/s²)².
+    pub w1: f64,
+    /// w2 · OF1_2, Σ z of every AUV (stay deep), per metre.
+    pub w2: f64,
+    /// w3 · OF1_3 (Step 3), A2U link off its band, per metre.
+    pub w3: f64,
+    /// w4 · OF1_4 (Step 3), A2A link off its band, per metre.
+    pub w4: f64,
+    /// w5 · OF1_5 (Step 3), spread of non-adjacent AUVs, per m².
+    pub w5: f64,
+    /// w6 · OF1_6, number of A2A edges (fixed by Step 2).
+    pub w6: f64,
+    /// w7 · OF1_7, number of A2U edges (fixed by Step 2).
+    pub w7: f64,
+    /// w8 · OF1_8, USV distance from its start (squared), per m².
+    pub w8: f64,
+    /// w8_2 · OF1_8_2, USV squared distance to the destination, per m².
+    pub w8_2: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SeafloorSpec {
+    /// Path of an ESRI ASCII grid (.asc, metres, elevation: negative below sea level). When
+    /// absent the synthetic floor below is generated.
+    pub file: Option<String>,
+    pub synthetic: crate::seafloor::SyntheticParams,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scp {
+    /// Largest number of SCP iterations per window and stage.
+    pub max_iterations: usize,
+    /// Convergence: stop when the predicted decrease of the merit function is below this
+    /// fraction of its magnitude (and the true constraint violation is below `feasibility_tol`).
+    pub tolerance: f64,
+    /// Largest true violation (metres, radians) accepted at convergence.
+    pub feasibility_tol: f64,
+    /// Initial trust-region radius on horizontal moves, metres.
+    pub trust_region: f64,
+    /// Smallest trust-region radius before the SCP gives up, metres.
+    pub min_trust_region: f64,
+    /// λ: penalty weight of the merit function on constraint violation.
+    pub penalty: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Initial {
+    /// USV position [x, y], metres.
+    pub usv: [f64; 2],
+    /// AUV positions [x, y, z], metres; AUVs start at rest.
+    pub auvs: Vec<[f64; 3]>,
+}
+
+// ---------------------------------------------------------------------------------------------
+// Defaults. Paper values where the paper gives them (Section V), ours otherwise (said why).
+// ---------------------------------------------------------------------------------------------
+
+impl Default for Scenario {
+    fn default() -> Self {
+        Scenario {
+            seed: 1,
+            windows: 1,
+            team: Team::default(),
+            horizon: Horizon::default(),
+            acoustic: Acoustic::default(),
+            auv: Auv::default(),
+            usv: Usv::default(),
+            weights: Weights::default(),
+            seafloor: SeafloorSpec::default(),
+            scp: Scp::default(),
+            initial: None,
+        }
+    }
+}
+
+impl Default for Team {
+    fn default() -> Self {
+        Team { auvs: 5 } // Section V, Fig. 4: five AUVs
+    }
+}
+
+impl Default for Horizon {
+    fn default() -> Self {
+        // Section V: "20 time slots with a sampling time of 100 seconds"
+        Horizon {
+            steps: 20,
+            dt: 100.0,
+        }
+    }
+}
+
+impl Default for Acoustic {
+    fn default() -> Self {
+        Acoustic {
+            sonar_range: 150.0,   // Section V: d_s = 150 m
+            band_tolerance: 30.0, // paper gives no d_t; 20 % of d_s
+            max_range: 400.0, // paper gives no d_max; a few hundred metres (mid-frequency modems)
+            resolution: 5.0,  // 𝓛_r: 5 m, a fifth of the synthetic grid cell
+        }
+    }
+}
+
+impl Default for Auv {
+    fn default() -> Self {
+        // REMUS 100 class. Coefficients: T. Prestero, "Verification of a six-degree of freedom
+        // simulation model for the REMUS autonomous underwater vehicle", MIT/WHOI MS thesis, 2001
+        // (also the source of Fossen's REMUS 100 model, Handbook of Marine Craft Hydrodynamics,
+        // 2nd ed., 2021, §8.4). Prestero gives quadratic drag; the linear damping below is its
+        // linearisation d(X_u|u|·u|u|)/du = 2·X_u|u|·u0 at a stated operating speed u0.
+        Auv {
+            max_speed: 2.0,          // REMUS 100: 2.5 m/s top speed (Fossen), 1.5 m/s cruise
+            max_heading_rate: 0.005, // paper gives none; 0.5 rad (29°) per 100 s step
+            min_heading_speed: 0.1,  // heading undefined below 0.1 m/s horizontal speed
+            floor_clearance: 5.0,    // ε; REMUS survey altitude is typically 3–10 m
+            surface_clearance: 2.0,  // stay 2 m below the surface (C1_4)
+            discretisation: Discretisation::Zoh,
+            mass: 30.51,              // Prestero Table 4.1: m = 30.51 kg
+            added_mass_surge: -0.93,  // X_u̇ = −9.30e−1 kg
+            added_mass_heave: -35.5,  // Z_ẇ = −3.55e1 kg
+            damping_surge: -4.86,     // 2·X_u|u|·u0, X_u|u| = −1.62 kg/m, u0 = 1.5 m/s
+            damping_heave: -26.2,     // 2·Z_w|w|·w0, Z_w|w| = −1.31e2 kg/m, w0 = 0.1 m/s
+            inertia_yaw: 3.45,        // I_zz = 3.45 kg·m²
+            added_inertia_yaw: -4.88, // N_ṙ = −4.88 kg·m²/rad
+            damping_yaw: -18.8,       // 2·N_r|r|·r0, N_r|r| = −94 kg·m²/rad², r0 = 0.1 rad/s
+        }
+    }
+}
+
+impl Default for Usv {
+    fn default() -> Self {
+        Usv {
+            max_speed: 1.5, // paper gives none; slower than the AUVs so they can keep up
+            objective: UsvObjective::Away,
+            destination: [3000.0, 0.0],
+            initial_heading: 0.0,
+        }
+    }
+}
+
+impl Default for Weights {
+    fn default() -> Self {
+        // The paper gives no weights. These are in physical units and chosen so that every term
+        // of P2 visibly matters; see docs/weights.md for the sweep behind them.
+        Weights {
+            w1: 1.0e3,
+            w2: 1.0,
+            w3: 1.0,
+            w4: 1.0,
+            w5: 1.0e-4,
+            w6: 0.0,
+            w7: 0.0,
+            w8: 1.0e-3,
+            w8_2: 1.0e-3,
+        }
+    }
+}
+
+impl Default for Scp {
+    fn default() -> Self {
+        Scp {
+            max_iterations: 50,
+            tolerance: 1e-4,
+            feasibility_tol: 1e-3,
+            trust_region: 200.0,
+            min_trust_region: 1e-3,
+            penalty: 1.0e3,
+        }
+    }
+}
+
+impl Default for SeafloorSpec {
+    fn default() -> Self {
+        SeafloorSpec {
+            file: None,
+            synthetic: crate::seafloor::SyntheticParams::default(),
+        }
+    }
+}
