@@ -14,3 +14,5 @@ pub mod plan;
 pub mod scenario;
 pub mod seafloor;
 pub mod vehicle;
+pub mod conic;
+pub mod scp;

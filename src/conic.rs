@@ -1,0 +1,219 @@
+//! A thin layer over Clarabel for problems whose sparsity pattern is fixed and whose values change
+//! from one SCP iteration to the next.
+//!
+//! Problems are min ½xᵀPx + qᵀx s.t. Ax + s = b, s ∈ K (Clarabel's standard form). Matrices are
+//! assembled once from triplets into CSC; each triplet remembers its slot in the CSC value array,
+//! so an update writes new values in triplet order and the solver keeps its symbolic
+//! factorisation (`update_P`/`update_A`, presolve off, structural zeros kept).
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
+};
+use thiserror::Error;
+
+/// Errors of the conic layer (building or solving).
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ConicError {
+    #[error("the conic solver rejected the problem data: {0}")]
+    Setup(String),
+    #[error("a data update changed the problem's sparsity pattern: {0}")]
+    Update(String),
+}
+
+/// Triplets (row, col, value) in insertion order.
+#[derive(Debug, Default, Clone)]
+pub struct Triplets {
+    pub rows: Vec<usize>,
+    pub cols: Vec<usize>,
+    pub vals: Vec<f64>,
+}
+
+impl Triplets {
+    pub fn push(&mut self, row: usize, col: usize, val: f64) {
+        self.rows.push(row);
+        self.cols.push(col);
+        self.vals.push(val);
+    }
+    pub fn len(&self) -> usize {
+        self.vals.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.vals.is_empty()
+    }
+    pub fn clear_values(&mut self) {
+        self.vals.clear();
+    }
+}
+
+/// A CSC matrix built from triplets, with the map triplet → CSC slot. Duplicate (row, col)
+/// triplets are summed into one slot.
+#[derive(Debug, Clone)]
+pub struct Pattern {
+    pub matrix: CscMatrix<f64>,
+    slot: Vec<usize>,
+}
+
+impl Pattern {
+    pub fn new(m: usize, n: usize, t: &Triplets) -> Pattern {
+        let mut order: Vec<usize> = (0..t.len()).collect();
+        order.sort_by_key(|&i| (t.cols[i], t.rows[i]));
+        let mut colptr = vec![0usize; n + 1];
+        let mut rowval = Vec::with_capacity(t.len());
+        let mut slot = vec![0usize; t.len()];
+        let mut last: Option<(usize, usize)> = None;
+        for &i in &order {
+            let key = (t.cols[i], t.rows[i]);
+            if last != Some(key) {
+                rowval.push(key.1);
+                colptr[key.0 + 1] += 1;
+                last = Some(key);
+            }
+            slot[i] = rowval.len() - 1;
+        }
+        for c in 0..n {
+            colptr[c + 1] += colptr[c];
+        }
+        let nnz = rowval.len();
+        let mut pattern =
+            Pattern { matrix: CscMatrix::new(m, n, colptr, rowval, vec![0.0; nnz]), slot };
+        pattern.matrix.nzval = pattern.values(&t.vals);
+        pattern
+    }
+
+    /// CSC values for triplet values given in the original triplet order.
+    pub fn values(&self, vals: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; self.matrix.nzval.len()];
+        for (i, v) in vals.iter().enumerate() {
+            out[self.slot[i]] += v;
+        }
+        out
+    }
+}
+
+/// Outcome of one conic solve.
+#[derive(Debug, Clone)]
+pub struct ConicSolution {
+    pub status: SolverStatus,
+    pub x: Vec<f64>,
+    pub objective: f64,
+    pub iterations: u32,
+    pub solve_time_s: f64,
+}
+
+impl ConicSolution {
+    /// True for Solved and AlmostSolved (reduced accuracy, still usable by the SCP, which
+    /// re-evaluates every constraint itself).
+    pub fn usable(&self) -> bool {
+        matches!(self.status, SolverStatus::Solved | SolverStatus::AlmostSolved)
+    }
+}
+
+/// Solver settings used throughout: presolve off and structural zeros kept so that data updates
+/// are always allowed.
+pub fn settings() -> DefaultSettings<f64> {
+    DefaultSettingsBuilder::default()
+        .verbose(false)
+        .presolve_enable(false)
+        .input_sparse_dropzeros(false)
+        .max_iter(200)
+        .build()
+        .expect("static Clarabel settings are valid")
+}
+
+/// A Clarabel solver over fixed P and A patterns.
+pub struct ConicSolver {
+    solver: DefaultSolver<f64>,
+    p: Pattern,
+    a: Pattern,
+}
+
+impl ConicSolver {
+    pub fn new(
+        p: Pattern,
+        q: &[f64],
+        a: Pattern,
+        b: &[f64],
+        cones: &[SupportedConeT<f64>],
+    ) -> Result<ConicSolver, ConicError> {
+        let solver = DefaultSolver::new(&p.matrix, q, &a.matrix, b, cones, settings())
+            .map_err(|e| ConicError::Setup(e.to_string()))?;
+        Ok(ConicSolver { solver, p, a })
+    }
+
+    /// New values for P (triplet order), q, A (triplet order) and b. Patterns must not change.
+    pub fn update(
+        &mut self,
+        p_vals: &[f64],
+        q: &[f64],
+        a_vals: &[f64],
+        b: &[f64],
+    ) -> Result<(), ConicError> {
+        let err = |e: clarabel::solver::DataUpdateError| ConicError::Update(e.to_string());
+        self.solver.update_P(&self.p.values(p_vals)).map_err(err)?;
+        self.solver.update_q(&q.to_vec()).map_err(err)?;
+        self.solver.update_A(&self.a.values(a_vals)).map_err(err)?;
+        self.solver.update_b(&b.to_vec()).map_err(err)?;
+        Ok(())
+    }
+
+    pub fn solve(&mut self) -> ConicSolution {
+        self.solver.solve();
+        let s = &self.solver.solution;
+        ConicSolution {
+            status: s.status,
+            x: s.x.clone(),
+            objective: s.obj_val,
+            iterations: s.iterations,
+            solve_time_s: s.solve_time,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clarabel::solver::SupportedConeT::*;
+
+    #[test]
+    fn pattern_sums_duplicates_and_maps_slots() {
+        let mut t = Triplets::default();
+        t.push(1, 0, 2.0);
+        t.push(0, 1, 3.0);
+        t.push(1, 0, 4.0);
+        let p = Pattern::new(2, 2, &t);
+        assert_eq!(p.matrix.colptr, vec![0, 1, 2]);
+        assert_eq!(p.matrix.rowval, vec![1, 0]);
+        assert_eq!(p.matrix.nzval, vec![6.0, 3.0]);
+        assert_eq!(p.values(&[1.0, 1.0, 1.0]), vec![2.0, 1.0]);
+    }
+
+    /// min (x−1)² + (y−2)² s.t. ‖(x, y)‖ ≤ 1: the projection of (1, 2) onto the unit disc.
+    #[test]
+    fn socp_projection_matches_closed_form_and_survives_an_update() {
+        let mut pt = Triplets::default();
+        pt.push(0, 0, 2.0);
+        pt.push(1, 1, 2.0);
+        let mut at = Triplets::default();
+        at.push(1, 0, -1.0);
+        at.push(2, 1, -1.0);
+        let b = [1.0, 0.0, 0.0];
+        let cones = [SecondOrderConeT(3)];
+        let mut s = ConicSolver::new(
+            Pattern::new(2, 2, &pt),
+            &[-2.0, -4.0],
+            Pattern::new(3, 2, &at),
+            &b,
+            &cones,
+        )
+        .unwrap();
+        let r = s.solve();
+        assert!(r.usable());
+        let n = 5f64.sqrt();
+        assert!((r.x[0] - 1.0 / n).abs() < 1e-6 && (r.x[1] - 2.0 / n).abs() < 1e-6);
+        // radius 2: the target (1, 2) is now outside still (norm √5 > 2)
+        s.update(&pt.vals, &[-2.0, -4.0], &at.vals, &[2.0, 0.0, 0.0]).unwrap();
+        let r = s.solve();
+        assert!((r.x[0] - 2.0 / n).abs() < 1e-6 && (r.x[1] - 4.0 / n).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,268 @@
+//! Sequential convex programming with a trust region and an exact-penalty merit function, after
+//! SCvx (Mao, Szmuk, Açıkmeşe, 2018) and Malyuta et al., "Convex Optimization for Trajectory
+//! Generation", IEEE Control Systems 2022, §"SCvx".
+//!
+//! The paper (Section IV-A) solves P2 "in an iterative manner where after each iteration Z_n[k]
+//! is found and bounded" with no safeguard; a plain fixed-point iteration of that kind stalls or
+//! oscillates against a steep floor. Here every nonconvex constraint g(x) ≤ 0 is linearised about
+//! the reference iterate x̄ and softened with a penalised slack ν ≥ 0 (virtual control), the
+//! model is trusted only within a radius Δ of x̄, and a candidate is accepted by the ratio
+//!
+//!   ρ = (φ(x̄) − φ(x*)) / (φ(x̄) − L(x*)),   φ = J + λ·Σ max(0, g),   L = its convex model,
+//!
+//! growing Δ when ρ is high and shrinking it when ρ is low. The loop stops when the model
+//! predicts a negligible decrease and the true violation is below the feasibility tolerance; if
+//! the decrease vanishes while a violation remains, λ is raised (up to 10⁴·λ₀) before the
+//! constraint is declared impossible.
+
+use crate::conic::ConicSolution;
+use crate::scenario::Scp;
+use std::time::Instant;
+
+/// What a problem solved by SCP must provide.
+pub trait ScpProblem {
+    type Iterate: Clone;
+    type Error;
+    /// Solve the convex model about `reference` with trust radius `radius` and penalty
+    /// `penalty`. Returns the candidate, the model merit L(candidate) and the solver's report.
+    fn solve_model(
+        &mut self,
+        reference: &Self::Iterate,
+        radius: f64,
+        penalty: f64,
+    ) -> Result<(Self::Iterate, f64, ConicSolution), Self::Error>;
+    /// The true objective J and the weighted sum of true violations V (so φ = J + λV), and the
+    /// largest single violation (in the constraint's own unit).
+    fn evaluate(&self, x: &Self::Iterate) -> Evaluation;
+    /// An error for a constraint that stays violated at convergence with the largest penalty.
+    fn infeasible(&self, x: &Self::Iterate) -> Self::Error;
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Evaluation {
+    pub objective: f64,
+    pub violation: f64,
+    pub max_violation: f64,
+}
+
+impl Evaluation {
+    pub fn merit(&self, penalty: f64) -> f64 {
+        self.objective + penalty * self.violation
+    }
+}
+
+/// Why the SCP loop stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ScpStatus {
+    Converged,
+    /// Iteration limit reached; the returned iterate is feasible within tolerance.
+    MaxIterations,
+}
+
+impl ScpStatus {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            ScpStatus::Converged => "converged",
+            ScpStatus::MaxIterations => "max_iterations",
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct ScpOutcome<X> {
+    pub iterate: X,
+    pub status: ScpStatus,
+    pub evaluation: Evaluation,
+    pub trace: Vec<crate::plan::ScpIteration>,
+    pub solve_time_s: f64,
+}
+
+// Ratio thresholds and trust-region factors (Malyuta et al., Table of SCvx parameters).
+const RHO0: f64 = 0.0;
+const RHO1: f64 = 0.25;
+const RHO2: f64 = 0.7;
+const SHRINK: f64 = 2.0;
+const GROW: f64 = 2.0;
+const PENALTY_GROWTH: f64 = 10.0;
+const PENALTY_MAX_FACTOR: f64 = 1e4;
+
+/// Run SCvx from `initial`. The first model solution is always accepted: the initial guess
+/// need not satisfy the convex constraints, so comparing merits against it means nothing.
+pub fn solve<P: ScpProblem>(
+    problem: &mut P,
+    initial: P::Iterate,
+    settings: &Scp,
+) -> Result<ScpOutcome<P::Iterate>, P::Error>
+where
+    P::Error: From<ScpFailure>,
+{
+    let start = Instant::now();
+    let mut reference = initial;
+    let mut reference_eval = problem.evaluate(&reference);
+    let mut radius = settings.trust_region;
+    let max_radius = settings.trust_region * 64.0;
+    let mut penalty = settings.penalty;
+    let mut trace = Vec::new();
+    let mut have_feasible_reference = false;
+
+    for it in 0..settings.max_iterations {
+        let (candidate, model_merit, report) = problem.solve_model(&reference, radius, penalty)?;
+        let candidate_eval = problem.evaluate(&candidate);
+        let phi_ref = reference_eval.merit(penalty);
+        let phi_cand = candidate_eval.merit(penalty);
+        let predicted = phi_ref - model_merit;
+        let actual = phi_ref - phi_cand;
+        let ratio = if predicted.abs() > 0.0 { actual / predicted } else { 1.0 };
+        let first = it == 0;
+        let scale = 1.0 + phi_ref.abs();
+        let negligible = !first && predicted <= settings.tolerance * scale;
+
+        let mut record = crate::plan::ScpIteration {
+            trust_region: radius,
+            merit_before: phi_ref,
+            merit_after: phi_cand,
+            predicted,
+            ratio,
+            accepted: false,
+            violation: candidate_eval.max_violation,
+            solver_status: format!("{:?}", report.status),
+            solver_time_s: report.solve_time_s,
+        };
+
+        if negligible {
+            trace.push(record);
+            if reference_eval.max_violation <= settings.feasibility_tol {
+                return Ok(ScpOutcome {
+                    iterate: reference,
+                    status: ScpStatus::Converged,
+                    evaluation: reference_eval,
+                    trace,
+                    solve_time_s: start.elapsed().as_secs_f64(),
+                });
+            }
+            if penalty < settings.penalty * PENALTY_MAX_FACTOR {
+                penalty *= PENALTY_GROWTH;
+                continue;
+            }
+            return Err(problem.infeasible(&reference));
+        }
+
+        if first || ratio >= RHO0 {
+            record.accepted = true;
+            reference = candidate;
+            reference_eval = candidate_eval;
+            have_feasible_reference = true;
+        }
+        if !first {
+            if ratio < RHO1 {
+                radius /= SHRINK;
+            } else if ratio > RHO2 {
+                radius = (radius * GROW).min(max_radius);
+            }
+        }
+        trace.push(record);
+        if radius < settings.min_trust_region {
+            break;
+        }
+    }
+
+    if have_feasible_reference && reference_eval.max_violation <= settings.feasibility_tol {
+        Ok(ScpOutcome {
+            iterate: reference,
+            status: ScpStatus::MaxIterations,
+            evaluation: reference_eval,
+            trace,
+            solve_time_s: start.elapsed().as_secs_f64(),
+        })
+    } else if have_feasible_reference {
+        Err(problem.infeasible(&reference))
+    } else {
+        Err(ScpFailure::NoIterate.into())
+    }
+}
+
+/// Failures of the SCP loop itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum ScpFailure {
+    #[error("sequential convex programming produced no iterate")]
+    NoIterate,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::conic::{ConicSolver, Pattern, Triplets};
+    use clarabel::solver::SupportedConeT::*;
+
+    /// min x² + y² s.t. the nonconvex constraint x·y ≥ 1 (so g = 1 − xy ≤ 0), from (3, 0.5).
+    /// The optimum is x = y = 1, objective 2.
+    struct Hyperbola {
+        solver: Option<ConicSolver>,
+    }
+
+    #[derive(Debug)]
+    struct Fail;
+    impl From<ScpFailure> for Fail {
+        fn from(_: ScpFailure) -> Self {
+            Fail
+        }
+    }
+
+    impl ScpProblem for Hyperbola {
+        type Iterate = [f64; 2];
+        type Error = Fail;
+        fn solve_model(
+            &mut self,
+            r: &[f64; 2],
+            radius: f64,
+            penalty: f64,
+        ) -> Result<([f64; 2], f64, ConicSolution), Fail> {
+            // variables x, y, ν; g_lin = 1 − x̄ȳ − ȳ(x − x̄) − x̄(y − ȳ) ≤ ν
+            let mut p = Triplets::default();
+            p.push(0, 0, 2.0);
+            p.push(1, 1, 2.0);
+            let mut a = Triplets::default();
+            a.push(0, 0, -r[1]);
+            a.push(0, 1, -r[0]);
+            a.push(0, 2, -1.0);
+            a.push(1, 2, -1.0);
+            a.push(3, 0, -1.0);
+            a.push(4, 1, -1.0);
+            let b = [-1.0 - r[0] * r[1], 0.0, radius, -r[0], -r[1]];
+            let q = [0.0, 0.0, penalty];
+            let cones = [NonnegativeConeT(2), SecondOrderConeT(3)];
+            let s = match &mut self.solver {
+                Some(s) => {
+                    s.update(&p.vals, &q, &a.vals, &b).unwrap();
+                    s
+                }
+                None => self.solver.insert(
+                    ConicSolver::new(Pattern::new(3, 3, &p), &q, Pattern::new(5, 3, &a), &b, &cones)
+                        .unwrap(),
+                ),
+            };
+            let sol = s.solve();
+            assert!(sol.usable());
+            let x = [sol.x[0], sol.x[1]];
+            let merit = sol.x[0].powi(2) + sol.x[1].powi(2) + penalty * sol.x[2];
+            Ok((x, merit, sol))
+        }
+        fn evaluate(&self, x: &[f64; 2]) -> Evaluation {
+            let v = (1.0 - x[0] * x[1]).max(0.0);
+            Evaluation { objective: x[0] * x[0] + x[1] * x[1], violation: v, max_violation: v }
+        }
+        fn infeasible(&self, _: &[f64; 2]) -> Fail {
+            Fail
+        }
+    }
+
+    #[test]
+    fn scvx_finds_the_known_optimum_of_a_nonconvex_problem() {
+        let settings = Scp { trust_region: 0.5, penalty: 10.0, tolerance: 1e-7, ..Scp::default() };
+        let out = solve(&mut Hyperbola { solver: None }, [3.0, 0.5], &settings).unwrap();
+        assert_eq!(out.status, ScpStatus::Converged);
+        assert!((out.iterate[0] - 1.0).abs() < 1e-4, "{:?}", out.iterate);
+        assert!((out.iterate[1] - 1.0).abs() < 1e-4, "{:?}", out.iterate);
+        assert!(out.evaluation.max_violation < 1e-6);
+    }
+}
