@@ -16,3 +16,8 @@ pub mod seafloor;
 pub mod vehicle;
 pub mod conic;
 pub mod scp;
+pub mod linearise;
+pub mod planner;
+pub mod step1;
+pub mod trajectory;
+pub mod output;

@@ -1,0 +1,150 @@
+//! The nonconvex pieces of P2 (and later P5) as smooth functions with exact gradients, so the SCP
+//! can linearise them about a reference: the heading-rate constraint C1_14, the seafloor
+//! clearance C2_2 along a segment, and the concave USV objective OF1_8.
+//!
+//! Every gradient here is checked against central finite differences by property tests.
+
+use crate::seafloor::{Seafloor, SeafloorError};
+
+/// Heading-rate constraint C1_14 between consecutive horizontal velocities a = V_h[k−1] and
+/// b = V_h[k]: the angle between them must not exceed θ = ψ̇_max·δ (for θ < 90°).
+///
+/// With ĥ = a/‖a‖ and n̂ = ĥ rotated by +90°, the angle condition is |n̂·b| ≤ tan θ · (ĥ·b), i.e.
+/// the two functions
+///
+///   g₊(a, b) = ( (a × b) − t (a·b) ) / ‖a‖ ≤ 0,   g₋(a, b) = ( −(a × b) − t (a·b) ) / ‖a‖ ≤ 0,
+///
+/// with t = tan θ and a × b = a_x b_y − a_y b_x. Both are smooth for a ≠ 0, homogeneous of
+/// degree 1 in b and 0 in a, so their linearisation about (ā, b̄) has no constant term:
+/// g(ā, b̄) + ∇g·((a, b) − (ā, b̄)) = ∇_a g·a + ∇_b g·b.
+///
+/// This replaces the paper's C2_3/C2_4 (eq. (11)), which bound each velocity component by a
+/// multiple of the same component one step earlier: a component that is zero (the AUVs start at
+/// rest) would then stay zero for ever.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Heading {
+    /// t = tan θ.
+    pub tan: f64,
+}
+
+/// Value and gradient of one of g₊ / g₋: (g, ∇_a g, ∇_b g).
+pub type HeadingLinearisation = (f64, [f64; 2], [f64; 2]);
+
+impl Heading {
+    /// θ is capped at 85°: beyond 90° the cone is no longer convex, and the restriction to 85° is
+    /// conservative (a plan that keeps it satisfies the real limit).
+    pub fn new(max_heading_rate: f64, dt: f64) -> Heading {
+        let theta = (max_heading_rate * dt).min(85f64.to_radians());
+        Heading { tan: theta.tan() }
+    }
+
+    /// g_sign(a, b) and its gradients; `sign` is +1 for g₊ and −1 for g₋. `a` must be nonzero.
+    pub fn linearise(&self, sign: f64, a: [f64; 2], b: [f64; 2]) -> HeadingLinearisation {
+        let na = (a[0] * a[0] + a[1] * a[1]).sqrt();
+        let cross = a[0] * b[1] - a[1] * b[0];
+        let dot = a[0] * b[0] + a[1] * b[1];
+        let inv = 1.0 / na;
+        let inv3 = inv * inv * inv;
+        let g = (sign * cross - self.tan * dot) * inv;
+        // ∇_b (a×b) = (−a_y, a_x), ∇_a (a×b) = (b_y, −b_x)
+        let db = [(-sign * a[1] - self.tan * a[0]) * inv, (sign * a[0] - self.tan * a[1]) * inv];
+        let num = sign * cross - self.tan * dot;
+        let da = [
+            (sign * b[1] - self.tan * b[0]) * inv - num * a[0] * inv3,
+            (-sign * b[0] - self.tan * b[1]) * inv - num * a[1] * inv3,
+        ];
+        (g, da, db)
+    }
+
+    /// max(g₊, g₋): positive when the turn from a to b exceeds θ (or b points backwards).
+    pub fn violation(&self, a: [f64; 2], b: [f64; 2]) -> f64 {
+        self.linearise(1.0, a, b).0.max(self.linearise(-1.0, a, b).0)
+    }
+}
+
+/// Seafloor clearance C2_2 at the point x_s = (1 − s)·P_a + s·P_b of a segment:
+/// g = Z(x_s, y_s) + ε − z_s ≤ 0. Returns g and the gradient of Z at (x_s, y_s), from which
+/// ∂g/∂P_a = (1 − s)(∇Z, −1) and ∂g/∂P_b = s(∇Z, −1).
+pub fn floor_sample(
+    floor: &Seafloor,
+    clearance: f64,
+    pa: [f64; 3],
+    pb: [f64; 3],
+    s: f64,
+) -> Result<(f64, [f64; 2]), SeafloorError> {
+    let p = lerp(pa, pb, s);
+    let (z, grad) = floor.elevation_and_gradient(p[0], p[1])?;
+    Ok((z + clearance - p[2], grad))
+}
+
+pub fn lerp(a: [f64; 3], b: [f64; 3], s: f64) -> [f64; 3] {
+    [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])]
+}
+
+/// Number of intervals the segment a→b is cut into at resolution r: the rule of the paper's 𝓛_r
+/// as implemented by `Seafloor::segment_clearance` (n = max(1, ⌈horizontal length / r⌉)).
+pub fn segment_intervals(a: [f64; 3], b: [f64; 3], resolution: f64) -> usize {
+    let l = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+    ((l / resolution).ceil() as usize).max(1)
+}
+
+/// The concave USV term −‖d‖² of OF1_8 (d = P_USV[K] − P_USV[0]) linearised about d̄:
+/// returns (value at d̄, gradient −2d̄).
+pub fn usv_away(d_ref: [f64; 2]) -> (f64, [f64; 2]) {
+    (-(d_ref[0] * d_ref[0] + d_ref[1] * d_ref[1]), [-2.0 * d_ref[0], -2.0 * d_ref[1]])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn fd2(f: impl Fn([f64; 2]) -> f64, x: [f64; 2], h: f64) -> [f64; 2] {
+        [
+            (f([x[0] + h, x[1]]) - f([x[0] - h, x[1]])) / (2.0 * h),
+            (f([x[0], x[1] + h]) - f([x[0], x[1] - h])) / (2.0 * h),
+        ]
+    }
+
+    proptest! {
+        #[test]
+        fn heading_gradients_match_finite_differences(
+            ax in -3.0..3.0f64, ay in -3.0..3.0f64, bx in -3.0..3.0f64, by in -3.0..3.0f64,
+            rate in 0.001..0.02f64, sign in prop::sample::select(vec![1.0, -1.0]),
+        ) {
+            prop_assume!(ax.hypot(ay) > 0.1);
+            let h = Heading::new(rate, 100.0);
+            let (_, da, db) = h.linearise(sign, [ax, ay], [bx, by]);
+            let fa = fd2(|a| h.linearise(sign, a, [bx, by]).0, [ax, ay], 1e-6);
+            let fb = fd2(|b| h.linearise(sign, [ax, ay], b).0, [bx, by], 1e-6);
+            for i in 0..2 {
+                prop_assert!((da[i] - fa[i]).abs() < 1e-5 * (1.0 + fa[i].abs()), "da {da:?} fd {fa:?}");
+                prop_assert!((db[i] - fb[i]).abs() < 1e-5 * (1.0 + fb[i].abs()), "db {db:?} fd {fb:?}");
+            }
+            // homogeneity: the linearisation has no constant term
+            let (g, da, db) = h.linearise(sign, [ax, ay], [bx, by]);
+            let lin = da[0] * ax + da[1] * ay + db[0] * bx + db[1] * by;
+            prop_assert!((g - lin).abs() < 1e-9 * (1.0 + g.abs()));
+        }
+
+        #[test]
+        fn heading_violation_is_positive_exactly_when_the_turn_is_too_sharp(
+            psi in -3.1..3.1f64, turn in -1.5..1.5f64, speed in 0.2..2.0f64,
+        ) {
+            let h = Heading::new(0.005, 100.0); // θ = 0.5 rad
+            let a = [psi.cos(), psi.sin()];
+            let b = [speed * (psi + turn).cos(), speed * (psi + turn).sin()];
+            let v = h.violation(a, b);
+            if turn.abs() < 0.5 - 1e-6 { prop_assert!(v < 0.0); }
+            if turn.abs() > 0.5 + 1e-6 { prop_assert!(v > 0.0); }
+        }
+
+        #[test]
+        fn usv_away_gradient_matches_finite_differences(dx in -3e3..3e3f64, dy in -3e3..3e3f64) {
+            let (_, g) = usv_away([dx, dy]);
+            let f = fd2(|d| usv_away(d).0, [dx, dy], 1e-3);
+            prop_assert!((g[0] - f[0]).abs() < 1e-4 * (1.0 + f[0].abs()));
+            prop_assert!((g[1] - f[1]).abs() < 1e-4 * (1.0 + f[1].abs()));
+        }
+    }
+}

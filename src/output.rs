@@ -1,0 +1,114 @@
+//! Writing plans: `plan.json` and one CSV per vehicle beside it. Every file is written to a
+//! temporary file in the target directory and renamed into place, so no command leaves a
+//! half-written output.
+
+use crate::plan::Plan;
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+#[derive(Debug, Error)]
+pub enum OutputError {
+    #[error("cannot write {path}: {source}")]
+    Write { path: PathBuf, source: std::io::Error },
+    #[error("cannot read plan {path}: {source}")]
+    Read { path: PathBuf, source: std::io::Error },
+    #[error("{path} is not a shoal plan: {why}")]
+    Parse { path: PathBuf, why: String },
+}
+
+/// Write `bytes` to `path` atomically (temporary file in the same directory, then rename).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+    let err = |source| OutputError::Write { path: path.to_path_buf(), source };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&dir).map_err(err)?;
+    let mut tmp = tempfile::NamedTempFile::new_in(&dir).map_err(err)?;
+    tmp.write_all(bytes).map_err(err)?;
+    tmp.as_file().sync_all().map_err(err)?;
+    tmp.persist(path).map_err(|e| err(e.error))?;
+    Ok(())
+}
+
+/// Write the plan as pretty JSON.
+pub fn write_plan(plan: &Plan, path: &Path) -> Result<(), OutputError> {
+    let json = serde_json::to_vec_pretty(plan).map_err(|e| OutputError::Write {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(e),
+    })?;
+    write_atomic(path, &json)
+}
+
+/// Read a plan file, refusing other formats with a clear message.
+pub fn read_plan(path: &Path) -> Result<Plan, OutputError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|source| OutputError::Read { path: path.to_path_buf(), source })?;
+    let value: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| OutputError::Parse { path: path.to_path_buf(), why: e.to_string() })?;
+    match value.get("format").and_then(|f| f.as_str()) {
+        Some(crate::plan::FORMAT) => {}
+        Some(other) => {
+            return Err(OutputError::Parse {
+                path: path.to_path_buf(),
+                why: format!("format \"{other}\" is not \"{}\"", crate::plan::FORMAT),
+            })
+        }
+        None => {
+            return Err(OutputError::Parse {
+                path: path.to_path_buf(),
+                why: "no \"format\" field".into(),
+            })
+        }
+    }
+    serde_json::from_value(value)
+        .map_err(|e| OutputError::Parse { path: path.to_path_buf(), why: e.to_string() })
+}
+
+/// One CSV per vehicle (`usv.csv`, `auv0.csv`, …) in `dir`, one row per window and step, from the
+/// last stage of each window. Returns the paths written.
+pub fn write_csvs(plan: &Plan, dir: &Path) -> Result<Vec<PathBuf>, OutputError> {
+    let mut written = Vec::new();
+    let dt = plan.scenario.horizon.dt;
+    let mut usv = String::from("window,step,time_s,x_m,y_m,ux_mps,uy_mps\n");
+    let n = plan.scenario.team.auvs;
+    let mut auvs = vec![
+        String::from(
+            "window,step,time_s,x_m,y_m,z_m,vx_mps,vy_mps,vz_mps,ux_mps2,uy_mps2,uz_mps2,surge_speed_mps,heading_rad\n"
+        );
+        n
+    ];
+    for w in &plan.windows {
+        let st = &w.step1;
+        for (k, p) in st.usv.position.iter().enumerate() {
+            let u = st.usv.input.get(k).copied().unwrap_or([f64::NAN; 2]);
+            let t = w.start_time + k as f64 * dt;
+            let _ = writeln!(usv, "{},{k},{t},{},{},{},{}", w.index, p[0], p[1], u[0], u[1]);
+        }
+        for (a, path) in st.auvs.iter().enumerate() {
+            for k in 0..path.position.len() {
+                let p = path.position[k];
+                let v = path.velocity[k];
+                let u = path.input.get(k).copied().unwrap_or([f64::NAN; 3]);
+                let h = path.heading[k].map(|h| h.to_string()).unwrap_or_default();
+                let t = w.start_time + k as f64 * dt;
+                let _ = writeln!(
+                    auvs[a],
+                    "{},{k},{t},{},{},{},{},{},{},{},{},{},{},{h}",
+                    w.index, p[0], p[1], p[2], v[0], v[1], v[2], u[0], u[1], u[2], path.surge_speed[k]
+                );
+            }
+        }
+    }
+    let path = dir.join("usv.csv");
+    write_atomic(&path, usv.replace("NaN", "").as_bytes())?;
+    written.push(path);
+    for (a, text) in auvs.iter().enumerate() {
+        let path = dir.join(format!("auv{a}.csv"));
+        write_atomic(&path, text.replace("NaN", "").as_bytes())?;
+        written.push(path);
+    }
+    Ok(written)
+}

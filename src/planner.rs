@@ -1,0 +1,211 @@
+//! Algorithm 1's outer loop for the stages built so far: the initial state (line 5), then for
+//! each window Step 1 (P2), the next window starting where the last one ended (line 7).
+
+use crate::conic::ConicError;
+use crate::plan::{
+    AuvState, InitialState, ModelRecord, ObjectiveTerms, Plan, SeafloorRecord, Stage, Window,
+    FORMAT,
+};
+use crate::scenario::Scenario;
+use crate::seafloor::{Seafloor, SeafloorError};
+use crate::step1::Step1;
+use crate::trajectory::Start;
+use crate::vehicle::{AuvModel, Damping, UsvModel, VehicleError};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::time::Instant;
+use thiserror::Error;
+
+/// Errors of planning.
+#[derive(Debug, Error)]
+pub enum PlanError {
+    #[error(transparent)]
+    Seafloor(#[from] SeafloorError),
+    #[error(transparent)]
+    Vehicle(#[from] VehicleError),
+    #[error(transparent)]
+    Conic(#[from] ConicError),
+    #[error("the start of window {window} is infeasible: {why}")]
+    InvalidStart { window: usize, why: String },
+    #[error("no initial AUV position can be drawn (Algorithm 1, line 5): {0}")]
+    NoInitialPosition(String),
+    #[error("{stage}: the convex subproblem failed: Clarabel status {status} after {iterations} interior-point iterations")]
+    Solver { stage: &'static str, status: String, iterations: u32 },
+    #[error("{stage}: a constraint cannot hold: {detail}")]
+    Infeasible { stage: &'static str, detail: String },
+    #[error(transparent)]
+    Scp(#[from] crate::scp::ScpFailure),
+}
+
+/// Everything the planner needs besides the scenario: the floor and where things came from.
+pub struct PlanInput<'a> {
+    pub scenario: &'a Scenario,
+    pub floor: &'a Seafloor,
+    /// "embedded default" or the scenario file's path.
+    pub scenario_source: String,
+    pub overrides: Vec<String>,
+    /// "synthetic" or "file", and the file's path.
+    pub seafloor_source: (String, Option<String>),
+}
+
+/// The window's start must satisfy the constraints that no input can change at k = 0.
+pub fn check_start(s: &Scenario, floor: &Seafloor, start: &Start, window: usize) -> Result<(), PlanError> {
+    let bad = |why: String| Err(PlanError::InvalidStart { window, why });
+    if start.auvs.len() != s.team.auvs {
+        return bad(format!("{} AUV states for team.auvs = {}", start.auvs.len(), s.team.auvs));
+    }
+    for (n, a) in start.auvs.iter().enumerate() {
+        let p = a.position;
+        let d = ((p[0] - start.usv[0]).powi(2) + (p[1] - start.usv[1]).powi(2) + p[2] * p[2]).sqrt();
+        if d > s.acoustic.sonar_range + 1e-9 {
+            return bad(format!(
+                "AUV {n} is {d:.1} m from the USV, beyond the sonar range d_s = {} m (C1_6 at k = 0)",
+                s.acoustic.sonar_range
+            ));
+        }
+        if p[2] > -s.auv.surface_clearance + 1e-9 {
+            return bad(format!(
+                "AUV {n} is at z = {:.2} m, above −surface_clearance = {} m (C1_4)",
+                p[2], -s.auv.surface_clearance
+            ));
+        }
+        if !floor.contains(p[0], p[1]) {
+            return bad(format!(
+                "AUV {n} at ({:.1}, {:.1}) is outside the seafloor grid {:?}",
+                p[0],
+                p[1],
+                floor.extent()
+            ));
+        }
+        let z = floor.elevation(p[0], p[1])?;
+        if p[2] < z + s.auv.floor_clearance - 1e-6 {
+            return bad(format!(
+                "AUV {n} at z = {:.2} m is less than ε = {} m above the floor (z = {z:.2} m) (C2_2)",
+                p[2], s.auv.floor_clearance
+            ));
+        }
+        let v = (a.velocity.iter().map(|c| c * c).sum::<f64>()).sqrt();
+        if v > s.auv.max_speed + 1e-6 {
+            return bad(format!("AUV {n} moves at {v:.3} m/s, above V_max = {} (C1_7)", s.auv.max_speed));
+        }
+    }
+    Ok(())
+}
+
+/// Algorithm 1, line 5: USV at the origin; AUVs at seeded random points in the half ball of
+/// radius d_s below it, at least surface_clearance below the surface and ε above the floor, at
+/// rest. Or the explicit `[initial]` of the scenario.
+pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, PlanError> {
+    if let Some(init) = &s.initial {
+        return Ok(InitialState {
+            origin: "explicit".into(),
+            usv: init.usv,
+            auvs: init
+                .auvs
+                .iter()
+                .map(|p| AuvState { position: *p, velocity: [0.0; 3] })
+                .collect(),
+        });
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(s.seed);
+    let ds = s.acoustic.sonar_range;
+    let mut auvs = Vec::with_capacity(s.team.auvs);
+    const TRIES: usize = 100_000;
+    for n in 0..s.team.auvs {
+        let mut found = None;
+        for _ in 0..TRIES {
+            let p = [rng.gen_range(-ds..ds), rng.gen_range(-ds..ds), rng.gen_range(-ds..0.0)];
+            if p.iter().map(|c| c * c).sum::<f64>() > ds * ds || p[2] > -s.auv.surface_clearance {
+                continue;
+            }
+            if !floor.contains(p[0], p[1]) {
+                continue;
+            }
+            if p[2] >= floor.elevation(p[0], p[1])? + s.auv.floor_clearance {
+                found = Some(p);
+                break;
+            }
+        }
+        let Some(p) = found else {
+            let z0 = floor.elevation(0.0, 0.0).unwrap_or(f64::NAN);
+            return Err(PlanError::NoInitialPosition(format!(
+                "no point for AUV {n} in {TRIES} draws within d_s = {ds} m of the USV, at least \
+                 {} m below the surface and {} m above the floor (floor under the USV: z = {z0:.1} m)",
+                s.auv.surface_clearance, s.auv.floor_clearance
+            )));
+        };
+        auvs.push(AuvState { position: p, velocity: [0.0; 3] });
+    }
+    Ok(InitialState { origin: "seeded".into(), usv: [0.0, 0.0], auvs })
+}
+
+/// Plan every window of the scenario.
+pub fn plan(input: &PlanInput) -> Result<Plan, PlanError> {
+    let s = input.scenario;
+    let floor = input.floor;
+    let damping = Damping::from_params(&s.auv)?;
+    let auv = AuvModel::new(&s.auv, s.horizon.dt)?;
+    let usv = UsvModel { dt: s.horizon.dt, max_speed: s.usv.max_speed };
+    let initial = initial_state(s, floor)?;
+    let mut start = Start { usv: initial.usv, auvs: initial.auvs.clone() };
+    let mut windows = Vec::with_capacity(s.windows);
+    let mut heading = None;
+    for w in 0..s.windows {
+        check_start(s, floor, &start, w)?;
+        let clock = Instant::now();
+        let mut step1 = Step1::new(s, floor, auv, usv, start.clone());
+        let guess = step1.initial_guess(heading);
+        let out = step1.solve(guess)?;
+        let t = &out.iterate;
+        let terms = step1.terms(t);
+        let stage = Stage {
+            status: out.status.as_str().into(),
+            iterations: out.trace.len(),
+            solve_time_s: clock.elapsed().as_secs_f64(),
+            objective: ObjectiveTerms {
+                energy: terms.energy,
+                depth: terms.depth,
+                usv: terms.usv,
+                total: step1.objective(&terms),
+            },
+            max_violation: out.evaluation.max_violation,
+            usv: t.usv_path(),
+            auvs: t.auv_paths(s.auv.min_heading_speed),
+            scp: out.trace.clone(),
+        };
+        let last = t.usv_u.last().copied().unwrap_or([0.0; 2]);
+        if last[0].hypot(last[1]) > 1e-6 {
+            heading = Some(last[1].atan2(last[0]));
+        }
+        start = t.end();
+        windows.push(Window {
+            index: w,
+            start_time: w as f64 * s.horizon.steps as f64 * s.horizon.dt,
+            step1: stage,
+        });
+    }
+    let (z_min, z_max) = floor.z_range();
+    Ok(Plan {
+        format: FORMAT.into(),
+        shoal_version: env!("CARGO_PKG_VERSION").into(),
+        scenario_source: input.scenario_source.clone(),
+        overrides: input.overrides.clone(),
+        scenario: s.clone(),
+        seafloor: SeafloorRecord {
+            source: input.seafloor_source.0.clone(),
+            path: input.seafloor_source.1.clone(),
+            nx: floor.nx(),
+            ny: floor.ny(),
+            x0: floor.x0(),
+            y0: floor.y0(),
+            dx: floor.dx(),
+            dy: floor.dy(),
+            z_min,
+            z_max,
+            fingerprint: floor.fingerprint(),
+        },
+        model: ModelRecord { damping, auv, usv },
+        initial,
+        windows,
+    })
+}

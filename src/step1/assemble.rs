@@ -1,0 +1,295 @@
+//! The convex model of P2 about a reference trajectory, as Clarabel data. The sequence of
+//! (row, column) entries never depends on values, so the pattern built at the first iteration
+//! serves every later one (only values change).
+//!
+//! Rows, in cone order:
+//! - zero cone: USV dynamics eq. (9), AUV dynamics (discretised eqs. (5)–(7)) — C1_1;
+//! - nonnegative: underwater C1_4, grid bounds, linearised floor clearance C2_2 (waypoints and
+//!   segment samples), linearised heading rate C1_14, slacks ν ≥ 0;
+//! - second-order cones: USV speed, AUV speed C1_7, AUV–USV range C1_5 (k < K) and C1_6 (k = K),
+//!   trust region on AUV horizontal positions.
+
+use super::Step1;
+use crate::conic::Triplets;
+use crate::linearise::{floor_sample, segment_intervals, usv_away};
+use crate::planner::PlanError;
+use crate::scenario::UsvObjective;
+use crate::trajectory::Trajectory;
+use clarabel::solver::SupportedConeT::{self, NonnegativeConeT, SecondOrderConeT, ZeroConeT};
+
+/// b of a padding row (0·x − ν + s = 1): always satisfied, never binding.
+const INACTIVE: f64 = 1.0;
+
+pub struct Assembly {
+    pub p: Triplets,
+    pub q: Vec<f64>,
+    pub a: Triplets,
+    pub b: Vec<f64>,
+    pub cones: Vec<SupportedConeT<f64>>,
+    /// Constant of the model objective (so model merit = ½xᵀPx + qᵀx + constant).
+    pub constant: f64,
+}
+
+impl Assembly {
+    fn row(&mut self, b: f64) -> usize {
+        self.b.push(b);
+        self.b.len() - 1
+    }
+}
+
+impl Step1<'_> {
+    pub(super) fn assemble(
+        &self,
+        r: &Trajectory,
+        radius: f64,
+        penalty: f64,
+    ) -> Result<Assembly, PlanError> {
+        let l = self.layout;
+        let (kk, nn) = (l.k, l.n);
+        let s = self.scenario;
+        let dt = s.horizon.dt;
+        let w = &s.weights;
+        let mut m = Assembly {
+            p: Triplets::default(),
+            q: vec![0.0; l.variables()],
+            a: Triplets::default(),
+            b: Vec::new(),
+            cones: Vec::new(),
+            constant: 0.0,
+        };
+
+        // ---- objective: w1·OF1_1 + w2·OF1_2 ± USV term + λ·slacks ----
+        for n in 0..nn {
+            for k in 0..kk {
+                for i in 0..3 {
+                    m.p.push(l.auv_u(n, k) + i, l.auv_u(n, k) + i, 2.0 * w.w1); // OF1_1
+                }
+            }
+            for k in 1..=kk {
+                m.q[l.auv_p(n, k) + 2] = w.w2; // OF1_2: Σ z
+                m.q[l.floor_slack(n, k)] = penalty;
+                m.q[l.heading_slack(n, k)] = penalty * dt; // m/s → m over one step
+            }
+        }
+        let pk = l.usv_p(kk);
+        let p0 = self.start.usv;
+        match s.usv.objective {
+            UsvObjective::Away => {
+                // −w8·‖P[K] − P[0]‖², concave: linearised about the reference (OF1_8)
+                let d_ref = sub2(r.usv_p[kk], p0);
+                let (value, grad) = usv_away(d_ref);
+                for i in 0..2 {
+                    m.p.push(pk + i, pk + i, 0.0);
+                    m.q[pk + i] = w.w8 * grad[i];
+                }
+                m.constant = w.w8 * (value - grad[0] * d_ref[0] - grad[1] * d_ref[1])
+                    - w.w8 * (grad[0] * p0[0] + grad[1] * p0[1]);
+            }
+            UsvObjective::Destination => {
+                // w8_2·‖P[K] − P∞‖² (OF1_8_2), convex
+                let dest = s.usv.destination;
+                for i in 0..2 {
+                    m.p.push(pk + i, pk + i, 2.0 * w.w8_2);
+                    m.q[pk + i] = -2.0 * w.w8_2 * dest[i];
+                }
+                m.constant = w.w8_2 * (dest[0] * dest[0] + dest[1] * dest[1]);
+            }
+        }
+
+        // ---- zero cone: dynamics C1_1 ----
+        let first = m.b.len();
+        for k in 0..kk {
+            for i in 0..2 {
+                // P_USV[k+1] − P_USV[k] − δ·U_USV[k] = 0   (eq. (9))
+                let row = m.row(if k == 0 { p0[i] } else { 0.0 });
+                m.a.push(row, l.usv_p(k + 1) + i, 1.0);
+                if k > 0 {
+                    m.a.push(row, l.usv_p(k) + i, -1.0);
+                }
+                m.a.push(row, l.usv_u(k) + i, -dt);
+            }
+        }
+        let md = &self.auv;
+        for n in 0..nn {
+            let x0 = self.start.auvs[n];
+            for k in 0..kk {
+                for i in 0..3 {
+                    // P[k+1] − P[k] − pv·V[k] − pu·U[k] = 0
+                    let row = m.row(if k == 0 { x0.position[i] + md.pv[i] * x0.velocity[i] } else { 0.0 });
+                    m.a.push(row, l.auv_p(n, k + 1) + i, 1.0);
+                    if k > 0 {
+                        m.a.push(row, l.auv_p(n, k) + i, -1.0);
+                        m.a.push(row, l.auv_v(n, k) + i, -md.pv[i]);
+                    }
+                    m.a.push(row, l.auv_u(n, k) + i, -md.pu[i]);
+                    // V[k+1] − vv·V[k] − vu·U[k] = 0
+                    let row = m.row(if k == 0 { md.vv[i] * x0.velocity[i] } else { 0.0 });
+                    m.a.push(row, l.auv_v(n, k + 1) + i, 1.0);
+                    if k > 0 {
+                        m.a.push(row, l.auv_v(n, k) + i, -md.vv[i]);
+                    }
+                    m.a.push(row, l.auv_u(n, k) + i, -md.vu[i]);
+                }
+            }
+        }
+        m.cones.push(ZeroConeT(m.b.len() - first));
+
+        // ---- nonnegative cone ----
+        let first = m.b.len();
+        let ext = self.floor.extent();
+        for n in 0..nn {
+            for k in 1..=kk {
+                let z = l.auv_p(n, k) + 2;
+                let row = m.row(-s.auv.surface_clearance); // C1_4: z ≤ −surface clearance
+                m.a.push(row, z, 1.0);
+                // grid bounds: the floor is only known inside the grid
+                let x = l.auv_p(n, k);
+                for (col, lo, hi) in [(x, ext.x_min, ext.x_max), (x + 1, ext.y_min, ext.y_max)] {
+                    let row = m.row(hi);
+                    m.a.push(row, col, 1.0);
+                    let row = m.row(-lo);
+                    m.a.push(row, col, -1.0);
+                }
+            }
+        }
+        self.floor_rows(r, &mut m)?;
+        self.heading_rows(r, &mut m);
+        for n in 0..nn {
+            for k in 1..=kk {
+                for col in [l.floor_slack(n, k), l.heading_slack(n, k)] {
+                    let row = m.row(0.0);
+                    m.a.push(row, col, -1.0);
+                }
+            }
+        }
+        m.cones.push(NonnegativeConeT(m.b.len() - first));
+
+        // ---- second-order cones ----
+        for k in 0..kk {
+            // ‖U_USV[k]‖ ≤ USV max speed (eq. (9))
+            m.row(s.usv.max_speed);
+            for i in 0..2 {
+                let row = m.row(0.0);
+                m.a.push(row, l.usv_u(k) + i, 1.0);
+            }
+            m.cones.push(SecondOrderConeT(3));
+        }
+        for n in 0..nn {
+            for k in 1..=kk {
+                // C1_7: ‖V_n[k]‖ ≤ V_max
+                m.row(s.auv.max_speed);
+                for i in 0..3 {
+                    let row = m.row(0.0);
+                    m.a.push(row, l.auv_v(n, k) + i, 1.0);
+                }
+                m.cones.push(SecondOrderConeT(4));
+                // C1_5 (k < K): ‖P_n − P_USV‖ ≤ d_max; C1_6 (k = K): ≤ d_s
+                let range =
+                    if k == kk { s.acoustic.sonar_range } else { s.acoustic.max_range };
+                m.row(range);
+                for i in 0..3 {
+                    let row = m.row(0.0);
+                    m.a.push(row, l.auv_p(n, k) + i, 1.0);
+                    if i < 2 {
+                        m.a.push(row, l.usv_p(k) + i, -1.0);
+                    }
+                }
+                m.cones.push(SecondOrderConeT(4));
+                // trust region: ‖P_n,xy[k] − P̄_n,xy[k]‖ ≤ Δ
+                m.row(radius);
+                for i in 0..2 {
+                    let row = m.row(r.auv_p[n][k][i]);
+                    m.a.push(row, l.auv_p(n, k) + i, 1.0);
+                }
+                m.cones.push(SecondOrderConeT(3));
+            }
+        }
+        Ok(m)
+    }
+
+    /// C2_2 linearised at the segment samples of the reference: for each AUV and each segment
+    /// k−1 → k, the sample points j/n_ref (j = 1..=n_ref) of the reference segment, padded to a
+    /// fixed count with inactive rows, all sharing the group's slack ν_f[n][k].
+    fn floor_rows(&self, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
+        let l = self.layout;
+        let eps = self.scenario.auv.floor_clearance;
+        let res = self.scenario.acoustic.resolution;
+        for n in 0..l.n {
+            for k in 1..=l.k {
+                let (pa, pb) = (r.auv_p[n][k - 1], r.auv_p[n][k]);
+                let used = segment_intervals(pa, pb, res).min(self.samples);
+                for j in 1..=self.samples {
+                    let (coef, rhs) = if j <= used {
+                        let sj = j as f64 / used as f64;
+                        let (g, grad) = floor_sample(self.floor, eps, pa, pb, sj)?;
+                        let c = [grad[0], grad[1], -1.0];
+                        // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
+                        let ps = crate::linearise::lerp(pa, pb, sj);
+                        let mut rhs = c[0] * ps[0] + c[1] * ps[1] + c[2] * ps[2] - g;
+                        if k == 1 {
+                            let p0 = self.start.auvs[n].position;
+                            rhs -= (1.0 - sj) * (c[0] * p0[0] + c[1] * p0[1] + c[2] * p0[2]);
+                        }
+                        ((sj, c), rhs)
+                    } else {
+                        ((0.0, [0.0; 3]), INACTIVE)
+                    };
+                    let (sj, c) = coef;
+                    let active = j <= used;
+                    let row = m.row(rhs);
+                    if k > 1 {
+                        for i in 0..3 {
+                            let v = if active { (1.0 - sj) * c[i] } else { 0.0 };
+                            m.a.push(row, l.auv_p(n, k - 1) + i, v);
+                        }
+                    }
+                    for i in 0..3 {
+                        m.a.push(row, l.auv_p(n, k) + i, if active { sj * c[i] } else { 0.0 });
+                    }
+                    m.a.push(row, l.floor_slack(n, k), -1.0);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// C1_14 linearised (see `linearise::Heading`): two rows per AUV and step sharing ν_h[n][k].
+    /// At k = 1 the previous velocity is the window's fixed start, so the rows are exact.
+    fn heading_rows(&self, r: &Trajectory, m: &mut Assembly) {
+        let l = self.layout;
+        let vmin = self.scenario.auv.min_heading_speed;
+        for n in 0..l.n {
+            for k in 1..=l.k {
+                let a = h2(r.auv_v[n][k - 1]);
+                let b = h2(r.auv_v[n][k]);
+                let active = a[0].hypot(a[1]) >= vmin;
+                for sign in [1.0, -1.0] {
+                    let (da, db) = if active {
+                        let (_, da, db) = self.heading.linearise(sign, a, b);
+                        (da, db)
+                    } else {
+                        ([0.0; 2], [0.0; 2])
+                    };
+                    let row = m.row(if active { 0.0 } else { INACTIVE });
+                    if k > 1 {
+                        for i in 0..2 {
+                            m.a.push(row, l.auv_v(n, k - 1) + i, da[i]);
+                        }
+                    }
+                    for i in 0..2 {
+                        m.a.push(row, l.auv_v(n, k) + i, db[i]);
+                    }
+                    m.a.push(row, l.heading_slack(n, k), -1.0);
+                }
+            }
+        }
+    }
+}
+
+pub(super) fn h2(v: [f64; 3]) -> [f64; 2] {
+    [v[0], v[1]]
+}
+
+fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}

@@ -1,0 +1,94 @@
+//! Where each variable of P2 sits in the solver's vector x (states, inputs and slacks; the
+//! dynamics are equality rows, so x holds every state, not only the inputs).
+//!
+//! Per window: USV positions P_USV[1..=K] and inputs U_USV[0..K), then one block per AUV holding
+//! P_n[1..=K], V_n[1..=K], U_n[0..K), the floor slacks ν_f[1..=K] and heading slacks ν_h[1..=K].
+//! Step k = 0 is the window's fixed start and is not a variable.
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Layout {
+    /// K, steps per window.
+    pub k: usize,
+    /// N, number of AUVs.
+    pub n: usize,
+}
+
+impl Layout {
+    const AUV_BLOCK: usize = 11;
+
+    pub fn variables(&self) -> usize {
+        4 * self.k + Self::AUV_BLOCK * self.k * self.n
+    }
+    /// P_USV[k], k = 1..=K (2 entries).
+    pub fn usv_p(&self, k: usize) -> usize {
+        debug_assert!(k >= 1 && k <= self.k);
+        2 * (k - 1)
+    }
+    /// U_USV[k], k = 0..K (2 entries).
+    pub fn usv_u(&self, k: usize) -> usize {
+        debug_assert!(k < self.k);
+        2 * self.k + 2 * k
+    }
+    fn base(&self, n: usize) -> usize {
+        debug_assert!(n < self.n);
+        4 * self.k + n * Self::AUV_BLOCK * self.k
+    }
+    /// P_n[k], k = 1..=K (3 entries).
+    pub fn auv_p(&self, n: usize, k: usize) -> usize {
+        debug_assert!(k >= 1 && k <= self.k);
+        self.base(n) + 3 * (k - 1)
+    }
+    /// V_n[k], k = 1..=K (3 entries).
+    pub fn auv_v(&self, n: usize, k: usize) -> usize {
+        debug_assert!(k >= 1 && k <= self.k);
+        self.base(n) + 3 * self.k + 3 * (k - 1)
+    }
+    /// U_n[k], k = 0..K (3 entries).
+    pub fn auv_u(&self, n: usize, k: usize) -> usize {
+        debug_assert!(k < self.k);
+        self.base(n) + 6 * self.k + 3 * k
+    }
+    /// ν_f[n][k]: slack of the floor group of segment k−1 → k, k = 1..=K.
+    pub fn floor_slack(&self, n: usize, k: usize) -> usize {
+        debug_assert!(k >= 1 && k <= self.k);
+        self.base(n) + 9 * self.k + (k - 1)
+    }
+    /// ν_h[n][k]: slack of the heading group at step k, k = 1..=K.
+    pub fn heading_slack(&self, n: usize, k: usize) -> usize {
+        debug_assert!(k >= 1 && k <= self.k);
+        self.base(n) + 10 * self.k + (k - 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every index is used exactly once, for sizes including the edge cases K = 1 and N = 1.
+    #[test]
+    fn indices_tile_the_variable_vector() {
+        for (k, n) in [(1, 1), (1, 3), (2, 1), (20, 5), (7, 12)] {
+            let l = Layout { k, n };
+            let mut seen = vec![0u8; l.variables()];
+            let mut mark = |i: usize, w: usize| (i..i + w).for_each(|j| seen[j] += 1);
+            for s in 1..=k {
+                mark(l.usv_p(s), 2);
+            }
+            for s in 0..k {
+                mark(l.usv_u(s), 2);
+            }
+            for a in 0..n {
+                for s in 1..=k {
+                    mark(l.auv_p(a, s), 3);
+                    mark(l.auv_v(a, s), 3);
+                    mark(l.floor_slack(a, s), 1);
+                    mark(l.heading_slack(a, s), 1);
+                }
+                for s in 0..k {
+                    mark(l.auv_u(a, s), 3);
+                }
+            }
+            assert!(seen.iter().all(|&c| c == 1), "K={k} N={n}");
+        }
+    }
+}

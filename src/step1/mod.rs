@@ -1,0 +1,314 @@
+//! Step 1 of Section IV-A: problem P2 — energy-efficient, floor-following, collision-free paths
+//! for the USV and the AUVs, with the graph terms of P1 relaxed.
+//!
+//!   OF2:  min Σ_k ( w1·OF1_1 + w2·OF1_2 ) − w8·OF1_8     (or + w8_2·OF1_8_2)
+//!   s.t.  C2_1 = C1_1…C1_7, C2_2 (floor clearance), C1_14 (heading rate)
+//!
+//! Departures from the paper, each for a reason:
+//! - OF1_8 does not depend on k, so it enters once (w8 absorbs the paper's factor K).
+//! - OF1_1 sums the AUV inputs only: the USV's input is a velocity, not a per-mass force.
+//! - C2_2 is linearised about the previous iterate (value and gradient of Z), not frozen, and is
+//!   imposed at every sample of every segment between waypoints (the rule of 𝓛_r), not only at
+//!   the waypoints: 100 s apart, a seamount can sit between two waypoints.
+//! - C2_3/C2_4 are replaced by the linearised cone of `linearise::Heading`.
+//! - The whole is solved by SCvx (`scp`), with a trust region and a merit function.
+
+mod assemble;
+mod layout;
+
+pub use layout::Layout;
+
+use crate::conic::{ConicSolution, ConicSolver, Pattern};
+use crate::linearise::{segment_intervals, usv_away, Heading};
+use crate::planner::PlanError;
+use crate::scenario::{Scenario, UsvObjective};
+use crate::scp::{self, Evaluation, ScpOutcome, ScpProblem};
+use crate::seafloor::Seafloor;
+use crate::trajectory::{Start, Trajectory};
+use crate::vehicle::{AuvModel, UsvModel};
+use assemble::h2;
+
+/// P2 for one window.
+pub struct Step1<'a> {
+    scenario: &'a Scenario,
+    floor: &'a Seafloor,
+    auv: AuvModel,
+    usv: UsvModel,
+    start: Start,
+    layout: Layout,
+    heading: Heading,
+    /// Floor rows per segment: enough for the longest segment the speed limit allows.
+    samples: usize,
+    solver: Option<ConicSolver>,
+}
+
+/// The unweighted objective terms of P2 for a trajectory.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Terms {
+    pub energy: f64,
+    pub depth: f64,
+    pub usv: f64,
+}
+
+impl<'a> Step1<'a> {
+    pub fn new(
+        scenario: &'a Scenario,
+        floor: &'a Seafloor,
+        auv: AuvModel,
+        usv: UsvModel,
+        start: Start,
+    ) -> Step1<'a> {
+        let layout = Layout { k: scenario.horizon.steps, n: scenario.team.auvs };
+        let longest = scenario.auv.max_speed * scenario.horizon.dt;
+        let samples = (longest / scenario.acoustic.resolution).ceil() as usize + 1;
+        Step1 {
+            scenario,
+            floor,
+            auv,
+            usv,
+            start,
+            layout,
+            heading: Heading::new(scenario.auv.max_heading_rate, scenario.horizon.dt),
+            samples: samples.max(1),
+            solver: None,
+        }
+    }
+
+    /// The first reference: AUVs coast from the start with zero input; the USV heads out at full
+    /// speed (towards the destination, or along `usv.initial_heading` / its current course), so
+    /// that the concave OF1_8 has a nonzero gradient to start from.
+    pub fn initial_guess(&self, previous_heading: Option<f64>) -> Trajectory {
+        let s = self.scenario;
+        let (kk, nn) = (self.layout.k, self.layout.n);
+        let dir = match s.usv.objective {
+            UsvObjective::Destination => {
+                let d = [
+                    s.usv.destination[0] - self.start.usv[0],
+                    s.usv.destination[1] - self.start.usv[1],
+                ];
+                d[1].atan2(d[0])
+            }
+            UsvObjective::Away => previous_heading.unwrap_or(s.usv.initial_heading),
+        };
+        let u = [s.usv.max_speed * dir.cos(), s.usv.max_speed * dir.sin()];
+        Trajectory::simulate(
+            &self.start,
+            vec![u; kk],
+            vec![vec![[0.0; 3]; kk]; nn],
+            &self.auv,
+            &self.usv,
+        )
+    }
+
+    /// Unweighted objective terms (OF1_1, OF1_2, OF1_8 or OF1_8_2).
+    pub fn terms(&self, t: &Trajectory) -> Terms {
+        let energy = t.auv_u.iter().flatten().map(|u| u.iter().map(|c| c * c).sum::<f64>()).sum();
+        let depth = t.auv_p.iter().flat_map(|p| p[1..].iter()).map(|p| p[2]).sum();
+        let pk = t.usv_p[self.layout.k];
+        let usv = match self.scenario.usv.objective {
+            UsvObjective::Away => {
+                -usv_away([pk[0] - self.start.usv[0], pk[1] - self.start.usv[1]]).0
+            }
+            UsvObjective::Destination => {
+                let d = self.scenario.usv.destination;
+                (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
+            }
+        };
+        Terms { energy, depth, usv }
+    }
+
+    /// Weighted objective J of P2.
+    pub fn objective(&self, t: &Terms) -> f64 {
+        let w = &self.scenario.weights;
+        let usv = match self.scenario.usv.objective {
+            UsvObjective::Away => -w.w8 * t.usv,
+            UsvObjective::Destination => w.w8_2 * t.usv,
+        };
+        w.w1 * t.energy + w.w2 * t.depth + usv
+    }
+
+    /// Worst floor-clearance violation (metres) of the segment k−1 → k of AUV n, sampled by the
+    /// seafloor's own 𝓛_r rule, and where it occurs.
+    fn floor_violation(&self, t: &Trajectory, n: usize, k: usize) -> (f64, [f64; 3]) {
+        let (a, b) = (t.auv_p[n][k - 1], t.auv_p[n][k]);
+        match self.floor.segment_clearance(a, b, self.scenario.acoustic.resolution) {
+            Ok(c) => (self.scenario.auv.floor_clearance - c.min_clearance, c.at),
+            // Outside the grid: only possible for a reference the bounds have not yet acted on.
+            Err(_) => (f64::INFINITY, b),
+        }
+    }
+
+    /// Heading violation at step k of AUV n: (g in m/s for the merit, angle excess in rad).
+    fn heading_violation(&self, t: &Trajectory, n: usize, k: usize) -> (f64, f64) {
+        let a = h2(t.auv_v[n][k - 1]);
+        let b = h2(t.auv_v[n][k]);
+        if a[0].hypot(a[1]) < self.scenario.auv.min_heading_speed {
+            return (0.0, 0.0);
+        }
+        let g = self.heading.violation(a, b).max(0.0);
+        let angle = (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1]).abs();
+        let theta = self.heading.tan.atan();
+        let excess = if b[0].hypot(b[1]) > 0.0 { (angle - theta).max(0.0) } else { 0.0 };
+        (g, if g > 0.0 { excess.max(g / a[0].hypot(a[1]).max(1e-9)) } else { 0.0 })
+    }
+
+    /// Extract the trajectory (and Σν_f, Σν_h) from the solver's x.
+    fn extract(&self, x: &[f64]) -> (Trajectory, f64, f64) {
+        let l = self.layout;
+        let mut t = Trajectory {
+            usv_p: vec![self.start.usv],
+            usv_u: Vec::new(),
+            auv_p: Vec::new(),
+            auv_v: Vec::new(),
+            auv_u: Vec::new(),
+        };
+        let v2 = |i: usize| [x[i], x[i + 1]];
+        let v3 = |i: usize| [x[i], x[i + 1], x[i + 2]];
+        for k in 1..=l.k {
+            t.usv_p.push(v2(l.usv_p(k)));
+            t.usv_u.push(v2(l.usv_u(k - 1)));
+        }
+        let (mut nf, mut nh) = (0.0, 0.0);
+        for n in 0..l.n {
+            let s0 = self.start.auvs[n];
+            let mut p = vec![s0.position];
+            let mut v = vec![s0.velocity];
+            let mut u = Vec::new();
+            for k in 1..=l.k {
+                p.push(v3(l.auv_p(n, k)));
+                v.push(v3(l.auv_v(n, k)));
+                u.push(v3(l.auv_u(n, k - 1)));
+                nf += x[l.floor_slack(n, k)].max(0.0);
+                nh += x[l.heading_slack(n, k)].max(0.0);
+            }
+            t.auv_p.push(p);
+            t.auv_v.push(v);
+            t.auv_u.push(u);
+        }
+        (t, nf, nh)
+    }
+
+    /// Solve P2 by SCvx from `guess`.
+    pub fn solve(&mut self, guess: Trajectory) -> Result<ScpOutcome<Trajectory>, PlanError> {
+        let settings = self.scenario.scp.clone();
+        scp::solve(self, guess, &settings)
+    }
+}
+
+impl ScpProblem for Step1<'_> {
+    type Iterate = Trajectory;
+    type Error = PlanError;
+
+    fn solve_model(
+        &mut self,
+        reference: &Trajectory,
+        radius: f64,
+        penalty: f64,
+    ) -> Result<(Trajectory, f64, ConicSolution), PlanError> {
+        let m = self.assemble(reference, radius, penalty)?;
+        let nvar = self.layout.variables();
+        let solver = match &mut self.solver {
+            Some(s) => {
+                s.update(&m.p.vals, &m.q, &m.a.vals, &m.b)?;
+                s
+            }
+            None => self.solver.insert(ConicSolver::new(
+                Pattern::new(nvar, nvar, &m.p),
+                &m.q,
+                Pattern::new(m.b.len(), nvar, &m.a),
+                &m.b,
+                &m.cones,
+            )?),
+        };
+        let sol = solver.solve();
+        if !sol.usable() {
+            return Err(PlanError::Solver {
+                stage: "step1",
+                status: format!("{:?}", sol.status),
+                iterations: sol.iterations,
+            });
+        }
+        let (t, nf, nh) = self.extract(&sol.x);
+        // model merit: convex terms exact, OF1_8 linearised, slacks penalised
+        let terms = self.terms(&t);
+        let w = &self.scenario.weights;
+        let usv_model = match self.scenario.usv.objective {
+            UsvObjective::Away => {
+                let p0 = self.start.usv;
+                let d_ref = [reference.usv_p[self.layout.k][0] - p0[0], reference.usv_p[self.layout.k][1] - p0[1]];
+                let d = [t.usv_p[self.layout.k][0] - p0[0], t.usv_p[self.layout.k][1] - p0[1]];
+                let (v, g) = usv_away(d_ref);
+                w.w8 * (v + g[0] * (d[0] - d_ref[0]) + g[1] * (d[1] - d_ref[1]))
+            }
+            UsvObjective::Destination => w.w8_2 * terms.usv,
+        };
+        let model = w.w1 * terms.energy
+            + w.w2 * terms.depth
+            + usv_model
+            + penalty * (nf + self.scenario.horizon.dt * nh);
+        Ok((t, model, sol))
+    }
+
+    fn evaluate(&self, t: &Trajectory) -> Evaluation {
+        let l = self.layout;
+        let dt = self.scenario.horizon.dt;
+        let (mut sum, mut worst) = (0.0, 0.0f64);
+        for n in 0..l.n {
+            for k in 1..=l.k {
+                let (f, _) = self.floor_violation(t, n, k);
+                let (g, angle) = self.heading_violation(t, n, k);
+                sum += f.max(0.0) + dt * g;
+                worst = worst.max(f).max(angle);
+            }
+        }
+        Evaluation { objective: self.objective(&self.terms(t)), violation: sum, max_violation: worst }
+    }
+
+    fn infeasible(&self, t: &Trajectory) -> PlanError {
+        let l = self.layout;
+        let mut worst = (0.0, String::new());
+        for n in 0..l.n {
+            for k in 1..=l.k {
+                let (f, at) = self.floor_violation(t, n, k);
+                if f > worst.0 {
+                    let floor = self.floor.elevation(at[0], at[1]).unwrap_or(f64::NAN);
+                    worst = (
+                        f,
+                        format!(
+                            "seafloor clearance C2_2: AUV {n} between steps {} and {k} passes \
+                             ({:.1}, {:.1}, {:.1}) where the floor is at z = {floor:.1} m; it \
+                             needs {:.1} m of clearance and has {:.2} m",
+                            k - 1,
+                            at[0],
+                            at[1],
+                            at[2],
+                            self.scenario.auv.floor_clearance,
+                            at[2] - floor
+                        ),
+                    );
+                }
+                let (_, angle) = self.heading_violation(t, n, k);
+                if angle > worst.0 {
+                    worst = (
+                        angle,
+                        format!(
+                            "heading rate C1_14: AUV {n} turns {:.3} rad more than ψ̇_max·δ \
+                             between steps {} and {k}",
+                            angle,
+                            k - 1
+                        ),
+                    );
+                }
+            }
+        }
+        PlanError::Infeasible { stage: "step1", detail: worst.1 }
+    }
+}
+
+/// Number of sample intervals of every AUV segment of `t` (for reports and tests).
+pub fn segment_samples(t: &Trajectory, resolution: f64) -> usize {
+    t.auv_p
+        .iter()
+        .flat_map(|p| p.windows(2).map(|w| segment_intervals(w[0], w[1], resolution)))
+        .sum()
+}
