@@ -1,29 +1,180 @@
-fn main() -> anyhow::Result<()> {
-    let s = shoal::scenario::Scenario::default();
-    let (nx, ny, c) = (481usize, 481usize, 25.0);
-    let mut z = vec![0.0; nx * ny];
-    let bumps = [(300.0, 100.0, 40.0, 200.0), (800.0, -300.0, 35.0, 300.0), (-400.0, 500.0, -30.0, 400.0), (1500.0, 200.0, 40.0, 250.0)];
-    for j in 0..ny { for i in 0..nx {
-        let x = -6000.0 + i as f64 * c; let y = -6000.0 + j as f64 * c;
-        let mut v = -100.0 - 0.002 * x + 0.001 * y;
-        for (bx, by, h, r) in bumps { v += h * (-((x - bx).powi(2) + (y - by).powi(2)) / (2.0 * r * r)).exp(); }
-        z[j * nx + i] = v.max(-140.0).min(-50.0);
-    }}
-    let floor = shoal::seafloor::Seafloor::from_nodes(nx, ny, -6000.0, -6000.0, c, c, z, vec![false; nx * ny])?;
-    let input = shoal::planner::PlanInput {
-        scenario: &s,
-        floor: &floor,
-        scenario_source: "embedded default".into(),
-        overrides: vec![],
-        seafloor_source: ("synthetic".into(), None),
-    };
-    let t = std::time::Instant::now();
-    let plan = shoal::planner::plan(&input)?;
-    let st = &plan.windows[0].step1;
-    for it in &st.scp {
-        eprintln!("{:8.1} {:14.4} {:14.4} {:12.4e} {:8.3} {} {:.2e} {} {:.4}", it.trust_region, it.merit_before, it.merit_after, it.predicted, it.ratio, it.accepted, it.violation, it.solver_status, it.solver_time_s);
+//! The `shoal` command: a thin layer over the library.
+
+use anyhow::{bail, Context, Result};
+use clap::{Parser, Subcommand};
+use shoal::scenario::{self, Scenario};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "shoal", version, about = "Localization-aware path planning for a USV and a team of AUVs")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Write the default scenario as a commented TOML file.
+    Init {
+        /// Where to write it.
+        #[arg(default_value = "mission.toml")]
+        path: PathBuf,
+        /// Overwrite an existing file.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Plan every window of a scenario, write plan.json and one CSV per vehicle, then check it.
+    Plan {
+        /// Scenario file (TOML); the embedded default when absent.
+        scenario: Option<PathBuf>,
+        /// Override one key, e.g. --set team.auvs=7 (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Seafloor grid (ESRI ASCII .asc); same as --set seafloor.file=PATH.
+        #[arg(long)]
+        seafloor: Option<PathBuf>,
+        /// Output directory.
+        #[arg(short, long, default_value = "out")]
+        out: PathBuf,
+    },
+    /// Verify every constraint of a plan from the plan file and the seafloor alone.
+    Check {
+        plan: PathBuf,
+        /// Check against this seafloor grid instead of the one the plan names.
+        #[arg(long)]
+        seafloor: Option<PathBuf>,
+    },
+    /// Seafloor tools.
+    Seafloor {
+        #[command(subcommand)]
+        command: SeafloorCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum SeafloorCommand {
+    /// Write the scenario's seafloor (default: the synthetic one) as an ESRI ASCII grid.
+    Export {
+        /// Scenario file; the embedded default when absent.
+        scenario: Option<PathBuf>,
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(short, long, default_value = "seafloor.asc")]
+        out: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
     }
-    eprintln!("{} iters {:?} {:.3}s", st.status, st.objective, t.elapsed().as_secs_f64());
-    shoal::output::write_plan(&plan, std::path::Path::new("plan.json"))?;
-    Ok(())
+}
+
+fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::Init { path, force } => {
+            if path.exists() && !force {
+                bail!("{} exists; use --force to overwrite it", path.display());
+            }
+            shoal::output::write_atomic(&path, scenario::default_toml().as_bytes())?;
+            println!("wrote {}", path.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Plan { scenario, mut set, seafloor, out } => {
+            if let Some(f) = seafloor {
+                set.push(format!("seafloor.file={}", toml_string(&f)));
+            }
+            let (s, source) = load_scenario(scenario.as_deref(), &set)?;
+            plan(&s, source, set, scenario.as_deref(), &out)
+        }
+        Command::Check { plan, seafloor } => {
+            let p = shoal::output::read_plan(&plan)?;
+            let floor = shoal::check::load_floor(&p, seafloor.as_deref())
+                .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
+            let report = shoal::check::check_plan(&p, &floor);
+            print!("{}", report.table());
+            if report.passed() {
+                println!("{}: every constraint holds", plan.display());
+                Ok(ExitCode::SUCCESS)
+            } else {
+                println!("{}: VIOLATED (see FAIL rows)", plan.display());
+                Ok(ExitCode::from(1))
+            }
+        }
+        Command::Seafloor { command: SeafloorCommand::Export { scenario, set, out } } => {
+            let (s, _) = load_scenario(scenario.as_deref(), &set)?;
+            let (floor, _) = shoal::planner::scenario_floor(&s, base_dir(scenario.as_deref()))?;
+            floor.write_esri_ascii(&out)?;
+            let (lo, hi) = floor.z_range();
+            println!(
+                "wrote {} ({} × {} nodes, {} m cells, z from {lo:.1} to {hi:.1} m)",
+                out.display(),
+                floor.nx(),
+                floor.ny(),
+                floor.dx()
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+fn toml_string(p: &Path) -> String {
+    format!("{:?}", p.to_string_lossy())
+}
+
+fn base_dir(scenario: Option<&Path>) -> &Path {
+    scenario.and_then(|p| p.parent()).unwrap_or(Path::new(""))
+}
+
+fn load_scenario(path: Option<&Path>, set: &[String]) -> Result<(Scenario, String)> {
+    Ok(match path {
+        Some(p) => (scenario::load(p, set)?, p.display().to_string()),
+        None => (scenario::default_with(set)?, "embedded default".to_string()),
+    })
+}
+
+fn plan(
+    s: &Scenario,
+    source: String,
+    overrides: Vec<String>,
+    scenario_path: Option<&Path>,
+    out: &Path,
+) -> Result<ExitCode> {
+    let (floor, floor_source) = shoal::planner::scenario_floor(s, base_dir(scenario_path))?;
+    let input = shoal::planner::PlanInput {
+        scenario: s,
+        floor: &floor,
+        scenario_source: source,
+        overrides,
+        seafloor_source: floor_source,
+    };
+    eprintln!(
+        "planning {} window(s): N = {} AUVs, K = {} steps of δ = {} s, seed {}",
+        s.windows, s.team.auvs, s.horizon.steps, s.horizon.dt, s.seed
+    );
+    let plan = shoal::planner::plan_with_progress(&input, |w, st| {
+        eprintln!(
+            "  window {w}: step 1 {} after {} SCP iterations in {:.3} s",
+            st.status, st.iterations, st.solve_time_s
+        )
+    })?;
+    let plan_path = out.join("plan.json");
+    shoal::output::write_plan(&plan, &plan_path)?;
+    let csvs = shoal::output::write_csvs(&plan, out)?;
+    println!("{}", shoal::report::summary_table(&plan));
+    println!("wrote {} and {} CSV files in {}", plan_path.display(), csvs.len(), out.display());
+    let report = shoal::check::check_plan(&plan, &floor);
+    print!("{}", report.table());
+    if report.passed() {
+        println!("check: every constraint holds");
+        Ok(ExitCode::SUCCESS)
+    } else {
+        println!("check: VIOLATED (see FAIL rows)");
+        Ok(ExitCode::from(1))
+    }
 }

@@ -139,8 +139,32 @@ pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, Pla
     Ok(InitialState { origin: "seeded".into(), usv: [0.0, 0.0], auvs })
 }
 
+/// The seafloor a scenario names: the grid file (a relative path is taken from `base_dir`, the
+/// scenario file's directory) or the synthetic floor. Returns it with its source record.
+pub fn scenario_floor(
+    s: &Scenario,
+    base_dir: &std::path::Path,
+) -> Result<(Seafloor, (String, Option<String>)), PlanError> {
+    match &s.seafloor.file {
+        Some(f) => {
+            let path = base_dir.join(f);
+            let floor = Seafloor::read_esri_ascii(&path)?;
+            Ok((floor, ("file".into(), Some(path.display().to_string()))))
+        }
+        None => Ok((Seafloor::synthetic(&s.seafloor.synthetic, s.seed)?, ("synthetic".into(), None))),
+    }
+}
+
 /// Plan every window of the scenario.
 pub fn plan(input: &PlanInput) -> Result<Plan, PlanError> {
+    plan_with_progress(input, |_, _| {})
+}
+
+/// Plan every window, calling `progress(window, stage)` after each window's Step 1.
+pub fn plan_with_progress(
+    input: &PlanInput,
+    mut progress: impl FnMut(usize, &Stage),
+) -> Result<Plan, PlanError> {
     let s = input.scenario;
     let floor = input.floor;
     let damping = Damping::from_params(&s.auv)?;
@@ -178,6 +202,7 @@ pub fn plan(input: &PlanInput) -> Result<Plan, PlanError> {
             heading = Some(last[1].atan2(last[0]));
         }
         start = t.end();
+        progress(w, &stage);
         windows.push(Window {
             index: w,
             start_time: w as f64 * s.horizon.steps as f64 * s.horizon.dt,

@@ -207,44 +207,54 @@ impl Step1<'_> {
         Ok(m)
     }
 
-    /// C2_2 linearised at the segment samples of the reference: for each AUV and each segment
-    /// k−1 → k, the sample points j/n_ref (j = 1..=n_ref) of the reference segment, padded to a
-    /// fixed count with inactive rows, all sharing the group's slack ν_f[n][k].
+    /// C2_2 linearised at the segment samples of the reference. The samples are those of the
+    /// paper's 𝓛_r (fractions j/n, j = 1..=n, n = ⌈horizontal length / r⌉); of these, the
+    /// `FLOOR_ROWS` with the least clearance on the reference (spread out: a sample next to one
+    /// already taken is taken last) get a row, all sharing the group's slack ν_f[n][k]. The SCP
+    /// measures the true violation over every sample, so a sample left out this iteration that
+    /// the step makes critical is picked up at the next one, and convergence is only declared
+    /// when all of them hold. Every row touches P[k−1] and P[k], so the pattern is fixed.
     fn floor_rows(&self, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
         let l = self.layout;
         let eps = self.scenario.auv.floor_clearance;
         let res = self.scenario.acoustic.resolution;
+        let mut g = Vec::new();
         for n in 0..l.n {
             for k in 1..=l.k {
                 let (pa, pb) = (r.auv_p[n][k - 1], r.auv_p[n][k]);
-                let used = segment_intervals(pa, pb, res).min(self.samples);
-                for j in 1..=self.samples {
-                    let (coef, rhs) = if j <= used {
-                        let sj = j as f64 / used as f64;
-                        let (g, grad) = floor_sample(self.floor, eps, pa, pb, sj)?;
-                        let c = [grad[0], grad[1], -1.0];
-                        // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
-                        let ps = crate::linearise::lerp(pa, pb, sj);
-                        let mut rhs = c[0] * ps[0] + c[1] * ps[1] + c[2] * ps[2] - g;
-                        if k == 1 {
-                            let p0 = self.start.auvs[n].position;
-                            rhs -= (1.0 - sj) * (c[0] * p0[0] + c[1] * p0[1] + c[2] * p0[2]);
+                let used = segment_intervals(pa, pb, res);
+                g.clear();
+                for j in 1..=used {
+                    let sj = j as f64 / used as f64;
+                    g.push((floor_sample(self.floor, eps, pa, pb, sj)?.0, j));
+                }
+                let picks = pick_samples(&mut g, FLOOR_ROWS);
+                for slot in 0..FLOOR_ROWS {
+                    let row_data = match picks.get(slot) {
+                        Some(&j) => {
+                            let sj = j as f64 / used as f64;
+                            let (gv, grad) = floor_sample(self.floor, eps, pa, pb, sj)?;
+                            let c = [grad[0], grad[1], -1.0];
+                            // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
+                            let ps = crate::linearise::lerp(pa, pb, sj);
+                            let mut rhs = c[0] * ps[0] + c[1] * ps[1] + c[2] * ps[2] - gv;
+                            if k == 1 {
+                                let p0 = self.start.auvs[n].position;
+                                rhs -= (1.0 - sj) * (c[0] * p0[0] + c[1] * p0[1] + c[2] * p0[2]);
+                            }
+                            Some((sj, c, rhs))
                         }
-                        ((sj, c), rhs)
-                    } else {
-                        ((0.0, [0.0; 3]), INACTIVE)
+                        None => None,
                     };
-                    let (sj, c) = coef;
-                    let active = j <= used;
+                    let (sj, c, rhs) = row_data.unwrap_or((0.0, [0.0; 3], INACTIVE));
                     let row = m.row(rhs);
                     if k > 1 {
                         for i in 0..3 {
-                            let v = if active { (1.0 - sj) * c[i] } else { 0.0 };
-                            m.a.push(row, l.auv_p(n, k - 1) + i, v);
+                            m.a.push(row, l.auv_p(n, k - 1) + i, (1.0 - sj) * c[i]);
                         }
                     }
                     for i in 0..3 {
-                        m.a.push(row, l.auv_p(n, k) + i, if active { sj * c[i] } else { 0.0 });
+                        m.a.push(row, l.auv_p(n, k) + i, sj * c[i]);
                     }
                     m.a.push(row, l.floor_slack(n, k), -1.0);
                 }
@@ -284,6 +294,33 @@ impl Step1<'_> {
             }
         }
     }
+}
+
+/// Floor rows per segment (see `floor_rows`).
+pub(super) const FLOOR_ROWS: usize = 6;
+
+/// Up to `count` sample indices from (g, j) pairs: largest g first, skipping a neighbour (j ± 1)
+/// of one already taken until no other sample is left.
+fn pick_samples(g: &mut [(f64, usize)], count: usize) -> Vec<usize> {
+    g.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let mut picks: Vec<usize> = Vec::with_capacity(count);
+    for &(_, j) in g.iter() {
+        if picks.len() == count {
+            break;
+        }
+        if !picks.iter().any(|&p| p.abs_diff(j) <= 1) {
+            picks.push(j);
+        }
+    }
+    for &(_, j) in g.iter() {
+        if picks.len() == count {
+            break;
+        }
+        if !picks.contains(&j) {
+            picks.push(j);
+        }
+    }
+    picks
 }
 
 pub(super) fn h2(v: [f64; 3]) -> [f64; 2] {

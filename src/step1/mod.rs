@@ -37,8 +37,6 @@ pub struct Step1<'a> {
     start: Start,
     layout: Layout,
     heading: Heading,
-    /// Floor rows per segment: enough for the longest segment the speed limit allows.
-    samples: usize,
     solver: Option<ConicSolver>,
 }
 
@@ -59,8 +57,6 @@ impl<'a> Step1<'a> {
         start: Start,
     ) -> Step1<'a> {
         let layout = Layout { k: scenario.horizon.steps, n: scenario.team.auvs };
-        let longest = scenario.auv.max_speed * scenario.horizon.dt;
-        let samples = (longest / scenario.acoustic.resolution).ceil() as usize + 1;
         Step1 {
             scenario,
             floor,
@@ -69,7 +65,6 @@ impl<'a> Step1<'a> {
             start,
             layout,
             heading: Heading::new(scenario.auv.max_heading_rate, scenario.horizon.dt),
-            samples: samples.max(1),
             solver: None,
         }
     }
