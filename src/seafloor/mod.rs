@@ -31,7 +31,7 @@
 //! or an ESRI ASCII file ([`Seafloor::read_esri_ascii`]).
 
 mod error;
-// mod esri_ascii;
+mod esri_ascii;
 mod synthetic;
 
 pub use error::SeafloorError;
