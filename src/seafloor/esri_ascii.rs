@@ -575,4 +575,20 @@ mod tests {
             assert!(msg.contains(needle), "{what}: {msg}");
         }
     }
+
+    proptest::proptest! {
+        /// Arbitrary bytes and arbitrary edits of a valid file give a grid or an error, never a
+        /// panic.
+        #[test]
+        fn never_panics(
+            junk in "\\PC{0,200}",
+            at in 0usize..200,
+            insert in "[-+.0-9eEaInf \n]{0,12}",
+        ) {
+            let _ = parse(&junk);
+            let cut = SURVEY.char_indices().map(|(i, _)| i).nth(at % SURVEY.len()).unwrap_or(0);
+            let edited = format!("{}{insert}{}", &SURVEY[..cut], &SURVEY[cut..]);
+            let _ = parse(&edited);
+        }
+    }
 }

@@ -35,15 +35,16 @@ mod esri_ascii;
 mod synthetic;
 
 pub use error::SeafloorError;
-pub use synthetic::SyntheticParams;
+pub use synthetic::{SyntheticParams, MAX_SYNTHETIC_FEATURES, MAX_SYNTHETIC_NODES_PER_AXIS};
 
 use sha2::{Digest, Sha256};
 
 /// Largest number of nodes along either axis of a grid.
 pub const MAX_NODES_PER_AXIS: usize = 50_000;
 
-/// Largest |z| of a data node, metres. Earth's relief lies within ±11 000 m; the bound keeps
-/// gradients finite and keeps the written NODATA marker (-99999) apart from data.
+/// Largest |z| of a data node, metres. Earth's relief lies within ±11 000 m; the bound catches
+/// grids in the wrong unit or with a stray NODATA marker, and keeps the NODATA marker written
+/// to files (-99999) apart from any data value.
 pub const MAX_ABS_ELEVATION: f64 = 50_000.0;
 
 /// Largest number of samples [`Seafloor::segment_clearance`] will take on one segment.
