@@ -1,0 +1,76 @@
+//! The one error type of the seafloor module.
+
+use super::Extent;
+
+/// Everything that can go wrong when building, reading, writing or querying a seafloor.
+///
+/// The grid-file variants (`Header`, `MissingKey`, `BadValue`, `DataCount`) all print as
+/// `<source> line <n>: <field>: <what is wrong and what is allowed>`.
+#[derive(Debug, thiserror::Error)]
+pub enum SeafloorError {
+    /// A query point lies outside the node-centre extent of the grid.
+    #[error("point ({x}, {y}) is outside the seafloor grid, which covers {extent}")]
+    OutsideGrid { x: f64, y: f64, extent: Extent },
+
+    /// A query argument is NaN or infinite.
+    #[error("{what} must be a finite number, got {value}")]
+    NonFinite { what: &'static str, value: f64 },
+
+    /// A query argument is finite but not allowed (e.g. a non-positive resolution).
+    #[error("{what}: {reason}")]
+    InvalidQuery { what: &'static str, reason: String },
+
+    /// The node array handed to [`Seafloor::from_nodes`](super::Seafloor::from_nodes) is not a
+    /// valid grid.
+    #[error("invalid seafloor grid: {0}")]
+    InvalidGrid(String),
+
+    /// A parameter of the synthetic floor is out of range.
+    #[error("invalid synthetic seafloor parameter {field}: {reason}")]
+    InvalidSynthetic { field: &'static str, reason: String },
+
+    /// An ESRI ASCII header line is malformed: unknown or repeated key, missing or bad value.
+    #[error("{source_name} line {line}: {field}: {reason}")]
+    Header {
+        source_name: String,
+        line: usize,
+        field: String,
+        reason: String,
+    },
+
+    /// A required ESRI ASCII header key is absent; `line` is where the header ended.
+    #[error("{source_name} line {line}: {field}: {reason}")]
+    MissingKey {
+        source_name: String,
+        line: usize,
+        field: String,
+        reason: String,
+    },
+
+    /// A data value of an ESRI ASCII grid is not a number, not finite, or out of range.
+    #[error("{source_name} line {line}: {field}: {reason}")]
+    BadValue {
+        source_name: String,
+        line: usize,
+        field: String,
+        reason: String,
+    },
+
+    /// An ESRI ASCII grid holds fewer or more data values than ncols × nrows.
+    #[error("{source_name} line {line}: data: {reason}")]
+    DataCount {
+        source_name: String,
+        line: usize,
+        expected: usize,
+        found: usize,
+        reason: String,
+    },
+
+    /// Reading or writing a grid file failed.
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+}
