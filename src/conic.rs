@@ -75,8 +75,10 @@ impl Pattern {
             colptr[c + 1] += colptr[c];
         }
         let nnz = rowval.len();
-        let mut pattern =
-            Pattern { matrix: CscMatrix::new(m, n, colptr, rowval, vec![0.0; nnz]), slot };
+        let mut pattern = Pattern {
+            matrix: CscMatrix::new(m, n, colptr, rowval, vec![0.0; nnz]),
+            slot,
+        };
         pattern.matrix.nzval = pattern.values(&t.vals);
         pattern
     }
@@ -105,7 +107,10 @@ impl ConicSolution {
     /// True for Solved and AlmostSolved (reduced accuracy, still usable by the SCP, which
     /// re-evaluates every constraint itself).
     pub fn usable(&self) -> bool {
-        matches!(self.status, SolverStatus::Solved | SolverStatus::AlmostSolved)
+        matches!(
+            self.status,
+            SolverStatus::Solved | SolverStatus::AlmostSolved
+        )
     }
 }
 
@@ -212,7 +217,8 @@ mod tests {
         let n = 5f64.sqrt();
         assert!((r.x[0] - 1.0 / n).abs() < 1e-6 && (r.x[1] - 2.0 / n).abs() < 1e-6);
         // radius 2: the target (1, 2) is now outside still (norm √5 > 2)
-        s.update(&pt.vals, &[-2.0, -4.0], &at.vals, &[2.0, 0.0, 0.0]).unwrap();
+        s.update(&pt.vals, &[-2.0, -4.0], &at.vals, &[2.0, 0.0, 0.0])
+            .unwrap();
         let r = s.solve();
         assert!((r.x[0] - 2.0 / n).abs() < 1e-6 && (r.x[1] - 4.0 / n).abs() < 1e-6);
     }

@@ -10,15 +10,19 @@
 //! - [`plan`]: the plan file (`shoal-plan/1`); [`output`]: atomic writing of plan.json and CSVs.
 //! - [`check`]: independent verification of a plan against the seafloor.
 
-pub mod plan;
-pub mod scenario;
-pub mod seafloor;
-pub mod vehicle;
+// Numeric kernels index several parallel arrays (x, y, z of positions, gradients and
+// coefficients) with one loop variable; iterator chains would obscure the maths.
+#![allow(clippy::needless_range_loop)]
+
 pub mod conic;
-pub mod scp;
 pub mod linearise;
+pub mod output;
+pub mod plan;
 pub mod planner;
+pub mod report;
+pub mod scenario;
+pub mod scp;
+pub mod seafloor;
 pub mod step1;
 pub mod trajectory;
-pub mod output;
-pub mod report;
+pub mod vehicle;

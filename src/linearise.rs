@@ -47,7 +47,10 @@ impl Heading {
         let inv3 = inv * inv * inv;
         let g = (sign * cross - self.tan * dot) * inv;
         // ∇_b (a×b) = (−a_y, a_x), ∇_a (a×b) = (b_y, −b_x)
-        let db = [(-sign * a[1] - self.tan * a[0]) * inv, (sign * a[0] - self.tan * a[1]) * inv];
+        let db = [
+            (-sign * a[1] - self.tan * a[0]) * inv,
+            (sign * a[0] - self.tan * a[1]) * inv,
+        ];
         let num = sign * cross - self.tan * dot;
         let da = [
             (sign * b[1] - self.tan * b[0]) * inv - num * a[0] * inv3,
@@ -58,7 +61,9 @@ impl Heading {
 
     /// max(g₊, g₋): positive when the turn from a to b exceeds θ (or b points backwards).
     pub fn violation(&self, a: [f64; 2], b: [f64; 2]) -> f64 {
-        self.linearise(1.0, a, b).0.max(self.linearise(-1.0, a, b).0)
+        self.linearise(1.0, a, b)
+            .0
+            .max(self.linearise(-1.0, a, b).0)
     }
 }
 
@@ -78,7 +83,11 @@ pub fn floor_sample(
 }
 
 pub fn lerp(a: [f64; 3], b: [f64; 3], s: f64) -> [f64; 3] {
-    [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])]
+    [
+        a[0] + s * (b[0] - a[0]),
+        a[1] + s * (b[1] - a[1]),
+        a[2] + s * (b[2] - a[2]),
+    ]
 }
 
 /// Number of intervals the segment a→b is cut into at resolution r: the rule of the paper's 𝓛_r
@@ -91,13 +100,22 @@ pub fn segment_intervals(a: [f64; 3], b: [f64; 3], resolution: f64) -> usize {
 /// The concave USV term −‖d‖² of OF1_8 (d = P_USV[K] − P_USV[0]) linearised about d̄:
 /// returns (value at d̄, gradient −2d̄).
 pub fn usv_away(d_ref: [f64; 2]) -> (f64, [f64; 2]) {
-    (-(d_ref[0] * d_ref[0] + d_ref[1] * d_ref[1]), [-2.0 * d_ref[0], -2.0 * d_ref[1]])
+    (
+        -(d_ref[0] * d_ref[0] + d_ref[1] * d_ref[1]),
+        [-2.0 * d_ref[0], -2.0 * d_ref[1]],
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+    use std::sync::OnceLock;
+
+    fn default_floor() -> &'static Seafloor {
+        static FLOOR: OnceLock<Seafloor> = OnceLock::new();
+        FLOOR.get_or_init(|| Seafloor::synthetic(&Default::default(), 1).unwrap())
+    }
 
     fn fd2(f: impl Fn([f64; 2]) -> f64, x: [f64; 2], h: f64) -> [f64; 2] {
         [
@@ -137,6 +155,35 @@ mod tests {
             let v = h.violation(a, b);
             if turn.abs() < 0.5 - 1e-6 { prop_assert!(v < 0.0); }
             if turn.abs() > 0.5 + 1e-6 { prop_assert!(v > 0.0); }
+        }
+
+        /// ∂g/∂P_b of the floor sample (s·(∇Z, −1)) against central differences, on the default
+        /// synthetic floor, away from cell edges where the bilinear gradient jumps.
+        #[test]
+        fn floor_sample_gradient_matches_finite_differences(
+            ax in -2000.0..2000.0f64, ay in -2000.0..2000.0f64,
+            bx in -2000.0..2000.0f64, by in -2000.0..2000.0f64, s in 0.05..1.0f64,
+        ) {
+            let floor = default_floor();
+            let pa = [ax, ay, -60.0];
+            let pb = [bx, by, -70.0];
+            let p = lerp(pa, pb, s);
+            let cell = floor.dx();
+            let frac = |v: f64, o: f64| ((v - o) / cell).rem_euclid(1.0);
+            let h = 1e-4;
+            let margin = 2.0 * h * s / cell + 1e-6;
+            prop_assume!([frac(p[0], floor.x0()), frac(p[1], floor.y0())]
+                .iter().all(|f| *f > margin && *f < 1.0 - margin));
+            let (_, grad) = floor_sample(floor, 5.0, pa, pb, s).unwrap();
+            let g = |q: [f64; 3]| floor_sample(floor, 5.0, pa, q, s).unwrap().0;
+            let analytic = [s * grad[0], s * grad[1], -s];
+            for i in 0..3 {
+                let (mut up, mut dn) = (pb, pb);
+                up[i] += h;
+                dn[i] -= h;
+                let fd = (g(up) - g(dn)) / (2.0 * h);
+                prop_assert!((fd - analytic[i]).abs() < 1e-6, "axis {i}: fd {fd} vs {}", analytic[i]);
+            }
         }
 
         #[test]

@@ -7,7 +7,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "shoal", version, about = "Localization-aware path planning for a USV and a team of AUVs")]
+#[command(
+    name = "shoal",
+    version,
+    about = "Localization-aware path planning for a USV and a team of AUVs"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -85,7 +89,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
             println!("wrote {}", path.display());
             Ok(ExitCode::SUCCESS)
         }
-        Command::Plan { scenario, mut set, seafloor, out } => {
+        Command::Plan {
+            scenario,
+            mut set,
+            seafloor,
+            out,
+        } => {
             if let Some(f) = seafloor {
                 set.push(format!("seafloor.file={}", toml_string(&f)));
             }
@@ -106,7 +115,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 Ok(ExitCode::from(1))
             }
         }
-        Command::Seafloor { command: SeafloorCommand::Export { scenario, set, out } } => {
+        Command::Seafloor {
+            command: SeafloorCommand::Export { scenario, set, out },
+        } => {
             let (s, _) = load_scenario(scenario.as_deref(), &set)?;
             let (floor, _) = shoal::planner::scenario_floor(&s, base_dir(scenario.as_deref()))?;
             floor.write_esri_ascii(&out)?;
@@ -167,7 +178,12 @@ fn plan(
     shoal::output::write_plan(&plan, &plan_path)?;
     let csvs = shoal::output::write_csvs(&plan, out)?;
     println!("{}", shoal::report::summary_table(&plan));
-    println!("wrote {} and {} CSV files in {}", plan_path.display(), csvs.len(), out.display());
+    println!(
+        "wrote {} and {} CSV files in {}",
+        plan_path.display(),
+        csvs.len(),
+        out.display()
+    );
     let report = shoal::check::check_plan(&plan, &floor);
     print!("{}", report.table());
     if report.passed() {

@@ -11,16 +11,25 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum OutputError {
     #[error("cannot write {path}: {source}")]
-    Write { path: PathBuf, source: std::io::Error },
+    Write {
+        path: PathBuf,
+        source: std::io::Error,
+    },
     #[error("cannot read plan {path}: {source}")]
-    Read { path: PathBuf, source: std::io::Error },
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
     #[error("{path} is not a shoal plan: {why}")]
     Parse { path: PathBuf, why: String },
 }
 
 /// Write `bytes` to `path` atomically (temporary file in the same directory, then rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
-    let err = |source| OutputError::Write { path: path.to_path_buf(), source };
+    let err = |source| OutputError::Write {
+        path: path.to_path_buf(),
+        source,
+    };
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
@@ -44,10 +53,14 @@ pub fn write_plan(plan: &Plan, path: &Path) -> Result<(), OutputError> {
 
 /// Read a plan file, refusing other formats with a clear message.
 pub fn read_plan(path: &Path) -> Result<Plan, OutputError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| OutputError::Read { path: path.to_path_buf(), source })?;
-    let value: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| OutputError::Parse { path: path.to_path_buf(), why: e.to_string() })?;
+    let text = std::fs::read_to_string(path).map_err(|source| OutputError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| OutputError::Parse {
+        path: path.to_path_buf(),
+        why: e.to_string(),
+    })?;
     match value.get("format").and_then(|f| f.as_str()) {
         Some(crate::plan::FORMAT) => {}
         Some(other) => {
@@ -63,8 +76,10 @@ pub fn read_plan(path: &Path) -> Result<Plan, OutputError> {
             })
         }
     }
-    serde_json::from_value(value)
-        .map_err(|e| OutputError::Parse { path: path.to_path_buf(), why: e.to_string() })
+    serde_json::from_value(value).map_err(|e| OutputError::Parse {
+        path: path.to_path_buf(),
+        why: e.to_string(),
+    })
 }
 
 /// One CSV per vehicle (`usv.csv`, `auv0.csv`, …) in `dir`, one row per window and step, from the
@@ -85,7 +100,11 @@ pub fn write_csvs(plan: &Plan, dir: &Path) -> Result<Vec<PathBuf>, OutputError> 
         for (k, p) in st.usv.position.iter().enumerate() {
             let u = st.usv.input.get(k).copied().unwrap_or([f64::NAN; 2]);
             let t = w.start_time + k as f64 * dt;
-            let _ = writeln!(usv, "{},{k},{t},{},{},{},{}", w.index, p[0], p[1], u[0], u[1]);
+            let _ = writeln!(
+                usv,
+                "{},{k},{t},{},{},{},{}",
+                w.index, p[0], p[1], u[0], u[1]
+            );
         }
         for (a, path) in st.auvs.iter().enumerate() {
             for k in 0..path.position.len() {
@@ -97,7 +116,17 @@ pub fn write_csvs(plan: &Plan, dir: &Path) -> Result<Vec<PathBuf>, OutputError> 
                 let _ = writeln!(
                     auvs[a],
                     "{},{k},{t},{},{},{},{},{},{},{},{},{},{},{h}",
-                    w.index, p[0], p[1], p[2], v[0], v[1], v[2], u[0], u[1], u[2], path.surge_speed[k]
+                    w.index,
+                    p[0],
+                    p[1],
+                    p[2],
+                    v[0],
+                    v[1],
+                    v[2],
+                    u[0],
+                    u[1],
+                    u[2],
+                    path.surge_speed[k]
                 );
             }
         }

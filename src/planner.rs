@@ -30,7 +30,11 @@ pub enum PlanError {
     #[error("no initial AUV position can be drawn (Algorithm 1, line 5): {0}")]
     NoInitialPosition(String),
     #[error("{stage}: the convex subproblem failed: Clarabel status {status} after {iterations} interior-point iterations")]
-    Solver { stage: &'static str, status: String, iterations: u32 },
+    Solver {
+        stage: &'static str,
+        status: String,
+        iterations: u32,
+    },
     #[error("{stage}: a constraint cannot hold: {detail}")]
     Infeasible { stage: &'static str, detail: String },
     #[error(transparent)]
@@ -49,14 +53,24 @@ pub struct PlanInput<'a> {
 }
 
 /// The window's start must satisfy the constraints that no input can change at k = 0.
-pub fn check_start(s: &Scenario, floor: &Seafloor, start: &Start, window: usize) -> Result<(), PlanError> {
+pub fn check_start(
+    s: &Scenario,
+    floor: &Seafloor,
+    start: &Start,
+    window: usize,
+) -> Result<(), PlanError> {
     let bad = |why: String| Err(PlanError::InvalidStart { window, why });
     if start.auvs.len() != s.team.auvs {
-        return bad(format!("{} AUV states for team.auvs = {}", start.auvs.len(), s.team.auvs));
+        return bad(format!(
+            "{} AUV states for team.auvs = {}",
+            start.auvs.len(),
+            s.team.auvs
+        ));
     }
     for (n, a) in start.auvs.iter().enumerate() {
         let p = a.position;
-        let d = ((p[0] - start.usv[0]).powi(2) + (p[1] - start.usv[1]).powi(2) + p[2] * p[2]).sqrt();
+        let d =
+            ((p[0] - start.usv[0]).powi(2) + (p[1] - start.usv[1]).powi(2) + p[2] * p[2]).sqrt();
         if d > s.acoustic.sonar_range + 1e-9 {
             return bad(format!(
                 "AUV {n} is {d:.1} m from the USV, beyond the sonar range d_s = {} m (C1_6 at k = 0)",
@@ -86,7 +100,10 @@ pub fn check_start(s: &Scenario, floor: &Seafloor, start: &Start, window: usize)
         }
         let v = (a.velocity.iter().map(|c| c * c).sum::<f64>()).sqrt();
         if v > s.auv.max_speed + 1e-6 {
-            return bad(format!("AUV {n} moves at {v:.3} m/s, above V_max = {} (C1_7)", s.auv.max_speed));
+            return bad(format!(
+                "AUV {n} moves at {v:.3} m/s, above V_max = {} (C1_7)",
+                s.auv.max_speed
+            ));
         }
     }
     Ok(())
@@ -103,7 +120,10 @@ pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, Pla
             auvs: init
                 .auvs
                 .iter()
-                .map(|p| AuvState { position: *p, velocity: [0.0; 3] })
+                .map(|p| AuvState {
+                    position: *p,
+                    velocity: [0.0; 3],
+                })
                 .collect(),
         });
     }
@@ -114,7 +134,11 @@ pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, Pla
     for n in 0..s.team.auvs {
         let mut found = None;
         for _ in 0..TRIES {
-            let p = [rng.gen_range(-ds..ds), rng.gen_range(-ds..ds), rng.gen_range(-ds..0.0)];
+            let p = [
+                rng.gen_range(-ds..ds),
+                rng.gen_range(-ds..ds),
+                rng.gen_range(-ds..0.0),
+            ];
             if p.iter().map(|c| c * c).sum::<f64>() > ds * ds || p[2] > -s.auv.surface_clearance {
                 continue;
             }
@@ -134,9 +158,16 @@ pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, Pla
                 s.auv.surface_clearance, s.auv.floor_clearance
             )));
         };
-        auvs.push(AuvState { position: p, velocity: [0.0; 3] });
+        auvs.push(AuvState {
+            position: p,
+            velocity: [0.0; 3],
+        });
     }
-    Ok(InitialState { origin: "seeded".into(), usv: [0.0, 0.0], auvs })
+    Ok(InitialState {
+        origin: "seeded".into(),
+        usv: [0.0, 0.0],
+        auvs,
+    })
 }
 
 /// The seafloor a scenario names: the grid file (a relative path is taken from `base_dir`, the
@@ -151,7 +182,10 @@ pub fn scenario_floor(
             let floor = Seafloor::read_esri_ascii(&path)?;
             Ok((floor, ("file".into(), Some(path.display().to_string()))))
         }
-        None => Ok((Seafloor::synthetic(&s.seafloor.synthetic, s.seed)?, ("synthetic".into(), None))),
+        None => Ok((
+            Seafloor::synthetic(&s.seafloor.synthetic, s.seed)?,
+            ("synthetic".into(), None),
+        )),
     }
 }
 
@@ -169,9 +203,15 @@ pub fn plan_with_progress(
     let floor = input.floor;
     let damping = Damping::from_params(&s.auv)?;
     let auv = AuvModel::new(&s.auv, s.horizon.dt)?;
-    let usv = UsvModel { dt: s.horizon.dt, max_speed: s.usv.max_speed };
+    let usv = UsvModel {
+        dt: s.horizon.dt,
+        max_speed: s.usv.max_speed,
+    };
     let initial = initial_state(s, floor)?;
-    let mut start = Start { usv: initial.usv, auvs: initial.auvs.clone() };
+    let mut start = Start {
+        usv: initial.usv,
+        auvs: initial.auvs.clone(),
+    };
     let mut windows = Vec::with_capacity(s.windows);
     let mut heading = None;
     for w in 0..s.windows {

@@ -112,7 +112,11 @@ where
         let phi_cand = candidate_eval.merit(penalty);
         let predicted = phi_ref - model_merit;
         let actual = phi_ref - phi_cand;
-        let ratio = if predicted.abs() > 0.0 { actual / predicted } else { 1.0 };
+        let ratio = if predicted.abs() > 0.0 {
+            actual / predicted
+        } else {
+            1.0
+        };
         let first = it == 0;
         let scale = 1.0 + phi_ref.abs();
         let negligible = !first && predicted <= settings.tolerance * scale;
@@ -237,8 +241,14 @@ mod tests {
                     s
                 }
                 None => self.solver.insert(
-                    ConicSolver::new(Pattern::new(3, 3, &p), &q, Pattern::new(5, 3, &a), &b, &cones)
-                        .unwrap(),
+                    ConicSolver::new(
+                        Pattern::new(3, 3, &p),
+                        &q,
+                        Pattern::new(5, 3, &a),
+                        &b,
+                        &cones,
+                    )
+                    .unwrap(),
                 ),
             };
             let sol = s.solve();
@@ -249,7 +259,11 @@ mod tests {
         }
         fn evaluate(&self, x: &[f64; 2]) -> Evaluation {
             let v = (1.0 - x[0] * x[1]).max(0.0);
-            Evaluation { objective: x[0] * x[0] + x[1] * x[1], violation: v, max_violation: v }
+            Evaluation {
+                objective: x[0] * x[0] + x[1] * x[1],
+                violation: v,
+                max_violation: v,
+            }
         }
         fn infeasible(&self, _: &[f64; 2]) -> Fail {
             Fail
@@ -258,7 +272,12 @@ mod tests {
 
     #[test]
     fn scvx_finds_the_known_optimum_of_a_nonconvex_problem() {
-        let settings = Scp { trust_region: 0.5, penalty: 10.0, tolerance: 1e-7, ..Scp::default() };
+        let settings = Scp {
+            trust_region: 0.5,
+            penalty: 10.0,
+            tolerance: 1e-7,
+            ..Scp::default()
+        };
         let out = solve(&mut Hyperbola { solver: None }, [3.0, 0.5], &settings).unwrap();
         assert_eq!(out.status, ScpStatus::Converged);
         assert!((out.iterate[0] - 1.0).abs() < 1e-4, "{:?}", out.iterate);

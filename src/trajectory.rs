@@ -47,14 +47,24 @@ impl Trajectory {
         for (s, inputs) in start.auvs.iter().zip(&auv_u) {
             let (mut p, mut v) = (vec![s.position], vec![s.velocity]);
             for u in inputs {
-                let (pn, vn) = auv.step(*p.last().expect("non-empty"), *v.last().expect("non-empty"), *u);
+                let (pn, vn) = auv.step(
+                    *p.last().expect("non-empty"),
+                    *v.last().expect("non-empty"),
+                    *u,
+                );
                 p.push(pn);
                 v.push(vn);
             }
             auv_p.push(p);
             auv_v.push(v);
         }
-        Trajectory { usv_p, usv_u, auv_p, auv_v, auv_u }
+        Trajectory {
+            usv_p,
+            usv_u,
+            auv_p,
+            auv_v,
+            auv_u,
+        }
     }
 
     /// State at the last step, the start of the next window (Algorithm 1, line 7).
@@ -74,7 +84,10 @@ impl Trajectory {
     }
 
     pub fn usv_path(&self) -> UsvPath {
-        UsvPath { position: self.usv_p.clone(), input: self.usv_u.clone() }
+        UsvPath {
+            position: self.usv_p.clone(),
+            input: self.usv_u.clone(),
+        }
     }
 
     /// Per-AUV paths with surge speed ‖(V_x, V_y)‖ and heading atan2(V_y, V_x) (null below

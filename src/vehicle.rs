@@ -58,13 +58,13 @@ impl Damping {
     pub fn from_params(p: &Auv) -> Result<Damping, VehicleError> {
         let rate = |field: &'static str, damping: f64, inertia: f64, added: f64| {
             let effective = inertia - added; // m − γ_v̇ (added mass is negative, so this grows)
-            if !(effective > 0.0) || !effective.is_finite() {
+            if effective.is_nan() || effective <= 0.0 || !effective.is_finite() {
                 return Err(VehicleError::BadParameter {
                     field,
                     why: format!("rigid plus added inertia must be positive, got {effective}"),
                 });
             }
-            if !(damping <= 0.0) {
+            if damping.is_nan() || damping > 0.0 {
                 return Err(VehicleError::BadParameter {
                     field,
                     why: format!(

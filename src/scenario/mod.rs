@@ -139,7 +139,7 @@ pub struct Weights {
     pub w8_2: f64,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
 pub struct SeafloorSpec {
     /// Path of an ESRI ASCII grid (.asc, metres, elevation: negative below sea level). When
@@ -288,15 +288,6 @@ impl Default for Scp {
             trust_region: 200.0,
             min_trust_region: 1e-3,
             penalty: 1.0e3,
-        }
-    }
-}
-
-impl Default for SeafloorSpec {
-    fn default() -> Self {
-        SeafloorSpec {
-            file: None,
-            synthetic: crate::seafloor::SyntheticParams::default(),
         }
     }
 }

@@ -115,7 +115,11 @@ impl Step1<'_> {
             for k in 0..kk {
                 for i in 0..3 {
                     // P[k+1] − P[k] − pv·V[k] − pu·U[k] = 0
-                    let row = m.row(if k == 0 { x0.position[i] + md.pv[i] * x0.velocity[i] } else { 0.0 });
+                    let row = m.row(if k == 0 {
+                        x0.position[i] + md.pv[i] * x0.velocity[i]
+                    } else {
+                        0.0
+                    });
                     m.a.push(row, l.auv_p(n, k + 1) + i, 1.0);
                     if k > 0 {
                         m.a.push(row, l.auv_p(n, k) + i, -1.0);
@@ -123,7 +127,11 @@ impl Step1<'_> {
                     }
                     m.a.push(row, l.auv_u(n, k) + i, -md.pu[i]);
                     // V[k+1] − vv·V[k] − vu·U[k] = 0
-                    let row = m.row(if k == 0 { md.vv[i] * x0.velocity[i] } else { 0.0 });
+                    let row = m.row(if k == 0 {
+                        md.vv[i] * x0.velocity[i]
+                    } else {
+                        0.0
+                    });
                     m.a.push(row, l.auv_v(n, k + 1) + i, 1.0);
                     if k > 0 {
                         m.a.push(row, l.auv_v(n, k) + i, -md.vv[i]);
@@ -184,8 +192,11 @@ impl Step1<'_> {
                 }
                 m.cones.push(SecondOrderConeT(4));
                 // C1_5 (k < K): ‖P_n − P_USV‖ ≤ d_max; C1_6 (k = K): ≤ d_s
-                let range =
-                    if k == kk { s.acoustic.sonar_range } else { s.acoustic.max_range };
+                let range = if k == kk {
+                    s.acoustic.sonar_range
+                } else {
+                    s.acoustic.max_range
+                };
                 m.row(range);
                 for i in 0..3 {
                     let row = m.row(0.0);

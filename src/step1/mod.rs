@@ -56,7 +56,10 @@ impl<'a> Step1<'a> {
         usv: UsvModel,
         start: Start,
     ) -> Step1<'a> {
-        let layout = Layout { k: scenario.horizon.steps, n: scenario.team.auvs };
+        let layout = Layout {
+            k: scenario.horizon.steps,
+            n: scenario.team.auvs,
+        };
         Step1 {
             scenario,
             floor,
@@ -97,8 +100,18 @@ impl<'a> Step1<'a> {
 
     /// Unweighted objective terms (OF1_1, OF1_2, OF1_8 or OF1_8_2).
     pub fn terms(&self, t: &Trajectory) -> Terms {
-        let energy = t.auv_u.iter().flatten().map(|u| u.iter().map(|c| c * c).sum::<f64>()).sum();
-        let depth = t.auv_p.iter().flat_map(|p| p[1..].iter()).map(|p| p[2]).sum();
+        let energy = t
+            .auv_u
+            .iter()
+            .flatten()
+            .map(|u| u.iter().map(|c| c * c).sum::<f64>())
+            .sum();
+        let depth = t
+            .auv_p
+            .iter()
+            .flat_map(|p| p[1..].iter())
+            .map(|p| p[2])
+            .sum();
         let pk = t.usv_p[self.layout.k];
         let usv = match self.scenario.usv.objective {
             UsvObjective::Away => {
@@ -126,7 +139,10 @@ impl<'a> Step1<'a> {
     /// seafloor's own 𝓛_r rule, and where it occurs.
     fn floor_violation(&self, t: &Trajectory, n: usize, k: usize) -> (f64, [f64; 3]) {
         let (a, b) = (t.auv_p[n][k - 1], t.auv_p[n][k]);
-        match self.floor.segment_clearance(a, b, self.scenario.acoustic.resolution) {
+        match self
+            .floor
+            .segment_clearance(a, b, self.scenario.acoustic.resolution)
+        {
             Ok(c) => (self.scenario.auv.floor_clearance - c.min_clearance, c.at),
             // Outside the grid: only possible for a reference the bounds have not yet acted on.
             Err(_) => (f64::INFINITY, b),
@@ -141,10 +157,23 @@ impl<'a> Step1<'a> {
             return (0.0, 0.0);
         }
         let g = self.heading.violation(a, b).max(0.0);
-        let angle = (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1]).abs();
+        let angle = (a[0] * b[1] - a[1] * b[0])
+            .atan2(a[0] * b[0] + a[1] * b[1])
+            .abs();
         let theta = self.heading.tan.atan();
-        let excess = if b[0].hypot(b[1]) > 0.0 { (angle - theta).max(0.0) } else { 0.0 };
-        (g, if g > 0.0 { excess.max(g / a[0].hypot(a[1]).max(1e-9)) } else { 0.0 })
+        let excess = if b[0].hypot(b[1]) > 0.0 {
+            (angle - theta).max(0.0)
+        } else {
+            0.0
+        };
+        (
+            g,
+            if g > 0.0 {
+                excess.max(g / a[0].hypot(a[1]).max(1e-9))
+            } else {
+                0.0
+            },
+        )
     }
 
     /// Extract the trajectory (and Σν_f, Σν_h) from the solver's x.
@@ -230,8 +259,14 @@ impl ScpProblem for Step1<'_> {
         let usv_model = match self.scenario.usv.objective {
             UsvObjective::Away => {
                 let p0 = self.start.usv;
-                let d_ref = [reference.usv_p[self.layout.k][0] - p0[0], reference.usv_p[self.layout.k][1] - p0[1]];
-                let d = [t.usv_p[self.layout.k][0] - p0[0], t.usv_p[self.layout.k][1] - p0[1]];
+                let d_ref = [
+                    reference.usv_p[self.layout.k][0] - p0[0],
+                    reference.usv_p[self.layout.k][1] - p0[1],
+                ];
+                let d = [
+                    t.usv_p[self.layout.k][0] - p0[0],
+                    t.usv_p[self.layout.k][1] - p0[1],
+                ];
                 let (v, g) = usv_away(d_ref);
                 w.w8 * (v + g[0] * (d[0] - d_ref[0]) + g[1] * (d[1] - d_ref[1]))
             }
@@ -256,7 +291,11 @@ impl ScpProblem for Step1<'_> {
                 worst = worst.max(f).max(angle);
             }
         }
-        Evaluation { objective: self.objective(&self.terms(t)), violation: sum, max_violation: worst }
+        Evaluation {
+            objective: self.objective(&self.terms(t)),
+            violation: sum,
+            max_violation: worst,
+        }
     }
 
     fn infeasible(&self, t: &Trajectory) -> PlanError {
@@ -296,7 +335,10 @@ impl ScpProblem for Step1<'_> {
                 }
             }
         }
-        PlanError::Infeasible { stage: "step1", detail: worst.1 }
+        PlanError::Infeasible {
+            stage: "step1",
+            detail: worst.1,
+        }
     }
 }
 
@@ -304,6 +346,9 @@ impl ScpProblem for Step1<'_> {
 pub fn segment_samples(t: &Trajectory, resolution: f64) -> usize {
     t.auv_p
         .iter()
-        .flat_map(|p| p.windows(2).map(|w| segment_intervals(w[0], w[1], resolution)))
+        .flat_map(|p| {
+            p.windows(2)
+                .map(|w| segment_intervals(w[0], w[1], resolution))
+        })
         .sum()
 }
