@@ -4,6 +4,10 @@
 
 use serde::{Deserialize, Serialize};
 
+mod validate;
+
+pub use validate::{validate, Violation, MAX_AUVS, MAX_CELLS_PER_SIDE, MAX_FEATURES, MAX_STEPS};
+
 /// A full, resolved scenario. Every field has a default, so an empty file is a valid scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -139,7 +143,8 @@ pub struct Weights {
     pub w8_2: f64,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// Default: no file, the default synthetic floor.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SeafloorSpec {
     /// Path of an ESRI ASCII grid (.asc, metres, elevation: negative below sea level). When
@@ -288,15 +293,6 @@ impl Default for Scp {
             trust_region: 200.0,
             min_trust_region: 1e-3,
             penalty: 1.0e3,
-        }
-    }
-}
-
-impl Default for SeafloorSpec {
-    fn default() -> Self {
-        SeafloorSpec {
-            file: None,
-            synthetic: crate::seafloor::SyntheticParams::default(),
         }
     }
 }
