@@ -306,3 +306,6 @@ impl Default for Scp {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;
