@@ -1,8 +1,22 @@
 //! Scenario: every parameter of a planning run, with defaults equal to the paper's experiment
 //! (Section V: N = 5 AUVs, K = 20 steps, δ = 100 s, d_s = 150 m). Where the paper gives no number
 //! the default is ours and the comment says why.
+//!
+//! Loading: [`load`] (a file), [`default_with`] (the embedded default, i.e. the text of
+//! [`default_toml`]) and [`from_toml_str`] take `--set key=value` overrides, deserialise, and
+//! check every range rule of [`validate`]. Errors ([`ScenarioError`]) name the file (or the
+//! override, or `embedded default`), the line, the dotted key and what is allowed.
 
 use serde::{Deserialize, Serialize};
+
+mod load;
+mod schema;
+mod template;
+mod validate;
+
+pub use load::{default_with, from_toml_str, load, ScenarioError, EMBEDDED_DEFAULT};
+pub use template::default_toml;
+pub use validate::{validate, Violation, MAX_AUVS, MAX_CELLS_PER_SIDE, MAX_FEATURES, MAX_STEPS};
 
 /// A full, resolved scenario. Every field has a default, so an empty file is a valid scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -139,7 +153,8 @@ pub struct Weights {
     pub w8_2: f64,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+/// Default: no file, the default synthetic floor.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SeafloorSpec {
     /// Path of an ESRI ASCII grid (.asc, metres, elevation: negative below sea level). When
@@ -291,3 +306,6 @@ impl Default for Scp {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,320 @@
+//! The default scenario as a commented TOML file (what `shoal init` writes). Keys, their order
+//! and their values come from `Scenario::default()` (via [`super::schema`]); only the comments
+//! are written here.
+
+use super::schema::{self, Schema};
+use super::Scenario;
+use toml_edit::{TableLike, Value};
+
+/// What each key (and section) means: meaning, unit, the paper's symbol, what is allowed.
+/// Keys are dotted; sections are listed under their own name.
+pub(crate) fn doc(key: &str) -> Option<&'static str> {
+    Some(match key {
+        "seed" => {
+            "Seed of every random draw: the initial AUV positions when [initial] is absent \
+             (Algorithm 1, line 5: P_n[0] = rand) and the synthetic seafloor. Integer ≥ 0."
+        }
+        "windows" => {
+            "Number of receding-horizon windows 𝒯 = 1, 2, … planned one after another \
+             (Algorithm 1, for_1); each starts where the previous one ended. Integer ≥ 1."
+        }
+        "team" => "The AUV group 𝒢 = {1, …, N}.",
+        "team.auvs" => "N: number of AUVs (paper, Section V: 5 in Fig. 4, also 7). 1 to 64.",
+        "horizon" => {
+            "The receding horizon: time steps k ∈ 𝒦 = {1, …, K} of δ seconds; one window \
+             spans 𝒯 = K·δ (paper: 20 × 100 s)."
+        }
+        "horizon.steps" => "K: time steps per window (paper: 20). 1 to 1000.",
+        "horizon.dt" => "δ: sampling time, seconds (paper: 100 s). > 0.",
+        "acoustic" => "Acoustic links: A2U (AUV–USV) and A2A (AUV–AUV) communication.",
+        "acoustic.sonar_range" => {
+            "d_s: sonar (acoustic modem) range, metres (paper: 150 m). C1_6 keeps every AUV \
+             within d_s of the USV at k = 0 and k = K; OF1_3 / OF1_4 keep linked pairs near \
+             d_s. > 0."
+        }
+        "acoustic.band_tolerance" => {
+            "d_t: tolerance of the link-length band [d_s − d_t, d_s] of C5_2 / C5_3, metres \
+             (ours: the paper gives no value; 20 % of d_s). 0 < d_t < d_s."
+        }
+        "acoustic.max_range" => {
+            "d_max: largest AUV–USV distance at any step (C1_5), metres (ours: the paper gives \
+             no value). Must be ≥ d_s."
+        }
+        "acoustic.resolution" => {
+            "r: sampling step of the segment / line-of-sight query 𝓛_r of C1_13, metres. > 0."
+        }
+        "auv" => {
+            "AUV limits, and the coefficients of the simplified dynamics, eqs. (5)–(8): \
+             E' = diag{γ_vx/(m − γ_v̇x), γ_vz/(m − γ_v̇z), γ_ωz/J_z}. Defaults: REMUS 100 \
+             (Prestero 2001; Fossen 2021, §8.4). Hydrodynamic coefficients follow Fossen's \
+             sign convention: added masses and dampings are ≤ 0."
+        }
+        "auv.max_speed" => "V_max (V_n_max of C1_7): largest AUV speed, m/s. > 0.",
+        "auv.max_heading_rate" => {
+            "ψ̇_max of C1_14: largest heading rate, rad/s (ours: 0.5 rad per 100 s step). > 0."
+        }
+        "auv.min_heading_speed" => {
+            "Horizontal speed, m/s, below which the heading ψ = atan(V_y / V_x) is undefined \
+             and C1_14 is not applied. 0 ≤ value < max_speed."
+        }
+        "auv.floor_clearance" => {
+            "ε of C2_2: clearance kept above the seafloor, z ≥ Z(x, y) + ε, metres. ≥ 0."
+        }
+        "auv.surface_clearance" => {
+            "C1_4: AUVs stay under water, z ≤ −surface_clearance, metres. ≥ 0."
+        }
+        "auv.discretisation" => {
+            "\"zoh\": exact zero-order hold of eqs. (5)–(7) (ours; always stable); \"euler\": \
+             the paper's forward Euler, eq. (8), refused when unstable (|1 − δ·E'| > 1)."
+        }
+        "auv.mass" => "m: rigid-body mass, kg. > 0.",
+        "auv.added_mass_surge" => "γ_v̇x (X_u̇): surge added mass, kg. ≤ 0.",
+        "auv.added_mass_heave" => "γ_v̇z (Z_ẇ): heave added mass, kg. ≤ 0.",
+        "auv.damping_surge" => {
+            "γ_vx (X_u): linear surge damping, kg/s (Prestero's quadratic drag linearised at \
+             1.5 m/s). ≤ 0."
+        }
+        "auv.damping_heave" => {
+            "γ_vz (Z_w): linear heave damping, kg/s (linearised at 0.1 m/s). ≤ 0."
+        }
+        "auv.inertia_yaw" => "J_z: yaw moment of inertia, kg·m². > 0.",
+        "auv.added_inertia_yaw" => "N_ṙ: yaw added inertia, kg·m². ≤ 0.",
+        "auv.damping_yaw" => {
+            "γ_ωz (N_r): linear yaw damping, kg·m²/s (linearised at 0.1 rad/s). ≤ 0."
+        }
+        "usv" => {
+            "The USV (mother ship) at the surface, eq. (9): P_USV[k+1] = P_USV[k] + δ·U_USV[k]."
+        }
+        "usv.max_speed" => {
+            "Largest USV speed ‖U_USV‖, m/s (ours: slower than the AUVs so they can keep up). > 0."
+        }
+        "usv.objective" => {
+            "\"away\": OF1_8, move away from the start point (weight w8); \"destination\": \
+             OF1_8_2, go towards `destination` (weight w8_2)."
+        }
+        "usv.destination" => {
+            "P_USV[∞] of OF1_8_2: [x, y], metres (x east, y north). Used when \
+             objective = \"destination\"."
+        }
+        "usv.initial_heading" => {
+            "Direction, rad from +x towards +y, of the first-guess USV path about which the \
+             concave OF1_8 is first linearised (its gradient is zero where the USV has not \
+             moved)."
+        }
+        "weights" => {
+            "Weights w1..w8 of OF1 (problem P1) and w8_2 of OF1_8_2. All ≥ 0. The paper gives \
+             no values; ours are in physical units."
+        }
+        "weights.w1" => "w1 · OF1_1: input energy Σ‖𝒰[k]‖², per (m/s²)².",
+        "weights.w2" => {
+            "w2 · OF1_2: Σ z of every AUV (keeps them deep, near the floor), per metre."
+        }
+        "weights.w3" => "w3 · OF1_3 (Step 3): A2U link length off its band near d_s, per metre.",
+        "weights.w4" => "w4 · OF1_4 (Step 3): A2A link length off its band near d_s, per metre.",
+        "weights.w5" => "w5 · OF1_5 (Step 3): spread of non-adjacent AUVs (rewarded), per m².",
+        "weights.w6" => "w6 · OF1_6: number of A2A edges (fixed by Step 2, so a constant).",
+        "weights.w7" => "w7 · OF1_7: number of A2U edges (fixed by Step 2, so a constant).",
+        "weights.w8" => {
+            "w8 · OF1_8: squared distance of the USV from its start (rewarded), per m². Used \
+             when usv.objective = \"away\"."
+        }
+        "weights.w8_2" => {
+            "w8_2 · OF1_8_2: squared distance of the USV to usv.destination, per m². Used when \
+             usv.objective = \"destination\"."
+        }
+        "seafloor" => {
+            "The seafloor Z(x, y), whose obstacles p_Ω^3D enter C1_12 / C1_13 (C2_2 in Step 1): \
+             an ESRI ASCII grid file, or the synthetic floor of Fig. 4(a) below."
+        }
+        "seafloor.file" => {
+            "Path of an ESRI ASCII grid (.asc; metres; elevation, negative below sea level). \
+             When absent the synthetic floor below is generated."
+        }
+        "seafloor.synthetic" => {
+            "Synthetic floor (Fig. 4(a)): a sloping plane with Gaussian seamounts and valleys \
+             drawn from `seed`. Used when `file` is absent."
+        }
+        "seafloor.synthetic.size" => {
+            "[x, y] extent, metres; the grid is centred on the origin (the USV's start). > 0, \
+             and size / cell ≤ 10000."
+        }
+        "seafloor.synthetic.cell" => "Grid cell size, metres. > 0.",
+        "seafloor.synthetic.base_depth" => "Floor elevation at the origin, metres (negative).",
+        "seafloor.synthetic.slope" => "Regional slope [dZ/dx, dZ/dy], metres per metre.",
+        "seafloor.synthetic.seamounts" => "Number of seamounts (Gaussian bumps). 0 to 10000.",
+        "seafloor.synthetic.valleys" => "Number of valleys (Gaussian troughs). 0 to 10000.",
+        "seafloor.synthetic.relief" => {
+            "[lo, hi] range of bump heights / trough depths, metres. 0 < lo ≤ hi."
+        }
+        "seafloor.synthetic.radius" => {
+            "[lo, hi] range of bump / trough radii (Gaussian σ), metres. 0 < lo ≤ hi."
+        }
+        "seafloor.synthetic.depth_range" => {
+            "[deepest, shallowest] elevations the floor is rescaled into, metres. \
+             deepest < shallowest < 0."
+        }
+        "scp" => {
+            "Sequential convex programming (SCvx-style trust region) that solves the \
+             non-convex P2 (Step 1) and P5 (Step 3). Ours: the paper does not give its solver \
+             settings."
+        }
+        "scp.max_iterations" => "Largest number of SCP iterations per window and stage. ≥ 1.",
+        "scp.tolerance" => {
+            "Convergence: stop when the predicted decrease of the merit function is below this \
+             fraction of its magnitude (and the violation is below feasibility_tol). > 0."
+        }
+        "scp.feasibility_tol" => {
+            "Largest true constraint violation accepted at convergence (metres, radians). > 0."
+        }
+        "scp.trust_region" => "Initial trust-region radius on horizontal moves, metres. > 0.",
+        "scp.min_trust_region" => {
+            "Smallest trust-region radius before the SCP gives up, metres. \
+             0 < value < trust_region."
+        }
+        "scp.penalty" => "λ: penalty weight of the merit function on constraint violation. > 0.",
+        "initial" => {
+            "Explicit initial state (Algorithm 1, lines 4–5). When absent, the USV starts at \
+             the origin and the AUVs are drawn from `seed` within d_s of it (C1_6 at k = 0). \
+             Remove the leading '# ' of the lines below to use it."
+        }
+        "initial.usv" => "P_USV[0] = [x, y], metres.",
+        "initial.auvs" => {
+            "P_n[0] = [x, y, z], metres, one per AUV (exactly team.auvs of them), z < 0; the \
+             AUVs start at rest."
+        }
+        _ => return None,
+    })
+}
+
+const HEADER: &str = "\
+# shoal scenario: every parameter of a planning run, with its default value.
+#
+# Written by `shoal init`. Every key is optional: a missing key takes the value shown here, so
+# an empty file is the default scenario. Any key can also be set on the command line with
+# `--set key=value`, e.g. --set acoustic.sonar_range=120 --set usv.objective=destination.
+#
+# Units: metres, seconds, radians, kilograms. Axes: x east, y north, z up; the sea surface is
+# z = 0 and the floor is below it (z < 0).
+# Symbols (δ, K, N, d_s, d_max, ε, V_max, ψ̇_max, w1..w8, OF1_*, C1_*, C2_*) are those of
+# Eskandari, Savkin & Deghat, \"Integrated Localization and Path Planning for an Ocean Exploring
+# Team of Autonomous Underwater Vehicles with Consensus Graph Model Predictive Control\".
+# Defaults are the paper's Section V values where it gives them, ours otherwise.
+";
+
+/// Longest comment line before wrapping.
+const WIDTH: usize = 96;
+
+fn comment(out: &mut String, text: &str, prefix: &str) {
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > WIDTH {
+            out.push_str(prefix);
+            out.push_str("# ");
+            out.push_str(&line);
+            out.push('\n');
+            line.clear();
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        out.push_str(prefix);
+        out.push_str("# ");
+        out.push_str(&line);
+        out.push('\n');
+    }
+}
+
+fn value_text(v: &Value) -> String {
+    // Arrays of arrays are written one element per line.
+    if let Value::Array(a) = v {
+        if a.iter().any(|e| matches!(e, Value::Array(_))) {
+            let mut s = String::from("[\n");
+            for e in a.iter() {
+                s.push_str("  ");
+                s.push_str(&value_text(e));
+                s.push_str(",\n");
+            }
+            s.push(']');
+            return s;
+        }
+    }
+    let mut v = v.clone();
+    v.decor_mut().clear();
+    v.to_string().trim().to_string()
+}
+
+/// Write `key = value`, commented out (every line prefixed with "# ") when `off`.
+fn assignment(out: &mut String, key: &str, v: &Value, off: bool) {
+    let text = format!("{key} = {}", value_text(v));
+    for line in text.lines() {
+        if off {
+            out.push_str("# ");
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+}
+
+fn section(out: &mut String, path: &str, t: &dyn TableLike, present: Option<&dyn TableLike>) {
+    let off = present.is_none();
+    // Values first, then sub-tables (TOML requires it).
+    for (k, item) in t.iter() {
+        if item.is_table_like() {
+            continue;
+        }
+        let key = join(path, k);
+        out.push('\n');
+        if let Some(d) = doc(&key) {
+            comment(out, d, "");
+        }
+        let absent = off || present.is_some_and(|p| p.get(k).is_none());
+        if let Some(v) = item.as_value() {
+            assignment(out, k, v, absent);
+        }
+    }
+    for (k, item) in t.iter() {
+        let Some(sub) = item.as_table_like() else {
+            continue;
+        };
+        let key = join(path, k);
+        let sub_present = present
+            .and_then(|p| p.get(k))
+            .and_then(|i| i.as_table_like());
+        out.push('\n');
+        if let Some(d) = doc(&key) {
+            comment(out, d, "");
+        }
+        if sub_present.is_none() {
+            out.push_str("# ");
+        }
+        out.push_str(&format!("[{key}]\n"));
+        section(out, &key, sub, sub_present);
+    }
+}
+
+fn join(path: &str, k: &str) -> String {
+    if path.is_empty() {
+        k.to_string()
+    } else {
+        format!("{path}.{k}")
+    }
+}
+
+/// The default scenario as a commented TOML file: every key with its default value and a
+/// comment giving its meaning, unit and symbol in the paper, grouped by section. Optional keys
+/// (`seafloor.file`, the `[initial]` section) are shown commented out, with an example.
+pub fn default_toml() -> String {
+    let full = Schema::new();
+    let defaults = schema::to_document(&Scenario::default());
+    let mut out = String::from(HEADER);
+    section(
+        &mut out,
+        "",
+        full.root(),
+        Some(defaults.as_table() as &dyn TableLike),
+    );
+    out
+}

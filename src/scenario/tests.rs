@@ -1,0 +1,958 @@
+// Tests build expected scenarios by changing single fields of the default, which reads best as
+// plain assignments.
+#![allow(clippy::field_reassign_with_default)]
+
+use super::schema::{example_initial, full_default, EXAMPLE_FLOOR_FILE};
+use super::*;
+use proptest::prelude::*;
+use std::collections::BTreeSet;
+
+const FILE: &str = "mission.toml";
+
+fn set(v: &[&str]) -> Vec<String> {
+    v.iter().map(|s| s.to_string()).collect()
+}
+
+fn parse(text: &str) -> Result<Scenario, ScenarioError> {
+    from_toml_str(text, FILE, &[])
+}
+
+fn parse_with(text: &str, overrides: &[&str]) -> Result<Scenario, ScenarioError> {
+    from_toml_str(text, FILE, &set(overrides))
+}
+
+/// Every dotted leaf key of a serialised scenario (arrays are leaves).
+fn leaf_keys(t: &toml::Table, prefix: &str, out: &mut Vec<String>) {
+    for (k, v) in t {
+        let key = if prefix.is_empty() {
+            k.clone()
+        } else {
+            format!("{prefix}.{k}")
+        };
+        match v {
+            toml::Value::Table(sub) => leaf_keys(sub, &key, out),
+            _ => out.push(key),
+        }
+    }
+}
+
+fn section_keys(t: &toml::Table, prefix: &str, out: &mut Vec<String>) {
+    for (k, v) in t {
+        if let toml::Value::Table(sub) = v {
+            let key = if prefix.is_empty() {
+                k.clone()
+            } else {
+                format!("{prefix}.{k}")
+            };
+            out.push(key.clone());
+            section_keys(sub, &key, out);
+        }
+    }
+}
+
+fn full_default_table() -> toml::Table {
+    match toml::Value::try_from(full_default()) {
+        Ok(toml::Value::Table(t)) => t,
+        other => panic!("full default does not serialise to a table: {other:?}"),
+    }
+}
+
+/// The dotted keys assigned in a template (commented-out assignments included).
+fn template_assignments(text: &str) -> BTreeSet<String> {
+    let mut section = String::new();
+    let mut keys = BTreeSet::new();
+    for line in text.lines() {
+        // A commented-out line counts only if it is TOML on its own (or opens an array).
+        let l = match line.strip_prefix("# ") {
+            Some(l) if l.ends_with('[') || toml::from_str::<toml::Table>(l).is_ok() => l.trim(),
+            Some(_) => continue,
+            None => line.trim(),
+        };
+        if let Some(h) = l.strip_prefix('[').and_then(|h| h.strip_suffix(']')) {
+            if h.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.')
+            {
+                section = h.to_string();
+                continue;
+            }
+        }
+        if let Some((k, _)) = l.split_once(" = ") {
+            if k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') && !k.is_empty() {
+                keys.insert(if section.is_empty() {
+                    k.to_string()
+                } else {
+                    format!("{section}.{k}")
+                });
+            }
+        }
+    }
+    keys
+}
+
+/// The template with its commented-out optional parts switched on.
+fn template_uncommented() -> String {
+    let t = default_toml();
+    let mut out = String::new();
+    let mut in_initial = false;
+    for line in t.lines() {
+        if line == "# [initial]" {
+            in_initial = true;
+        }
+        let toml_line = [
+            "# file = ",
+            "# [initial]",
+            "# usv = ",
+            "# auvs = ",
+            "#   [",
+            "# ]",
+        ]
+        .iter()
+        .any(|p| line.starts_with(p));
+        let l = if toml_line && (in_initial || line.starts_with("# file = ")) {
+            line.strip_prefix("# ").unwrap_or(line)
+        } else {
+            line
+        };
+        out.push_str(l);
+        out.push('\n');
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------------------------
+// Template
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn template_parses_to_exactly_the_default() {
+    let t = default_toml();
+    assert_eq!(parse(&t).unwrap(), Scenario::default());
+    // Independently of our loader, too.
+    let s: Scenario = toml::from_str(&t).unwrap();
+    assert_eq!(s, Scenario::default());
+    assert_eq!(default_with(&[]).unwrap(), Scenario::default());
+}
+
+#[test]
+fn template_has_every_key_and_only_those() {
+    let mut want = Vec::new();
+    leaf_keys(&full_default_table(), "", &mut want);
+    let want: BTreeSet<String> = want.into_iter().collect();
+    let got = template_assignments(&default_toml());
+    assert_eq!(got, want);
+    // Spot checks that the walk saw the nested and optional keys.
+    for k in [
+        "seed",
+        "seafloor.synthetic.depth_range",
+        "seafloor.file",
+        "initial.auvs",
+    ] {
+        assert!(want.contains(k), "{k}");
+    }
+}
+
+#[test]
+fn template_documents_every_key_and_section() {
+    let t = full_default_table();
+    let mut keys = Vec::new();
+    leaf_keys(&t, "", &mut keys);
+    section_keys(&t, "", &mut keys);
+    for k in keys {
+        let d = template::doc(&k);
+        assert!(
+            d.is_some_and(|d| !d.is_empty()),
+            "no comment for `{k}` in template.rs"
+        );
+    }
+    let text = default_toml();
+    for sym in [
+        "δ", "K:", "N:", "d_s", "d_t", "d_max", "ε", "V_max", "ψ̇_max", "OF1_8_2", "C1_4", "C1_7",
+        "C1_14", "C2_2", "w8_2",
+    ] {
+        assert!(text.contains(sym), "template never mentions {sym}");
+    }
+}
+
+#[test]
+fn template_values_come_from_default() {
+    // Change a default through an override and check the rendering path agrees.
+    let text = default_toml();
+    assert!(text.contains(&format!(
+        "sonar_range = {:?}",
+        Scenario::default().acoustic.sonar_range
+    )));
+    assert!(text.contains("# file = \"bathymetry.asc\""));
+    assert!(text.contains("# [initial]"));
+}
+
+#[test]
+fn uncommented_optional_parts_are_valid() {
+    let s = parse(&template_uncommented()).unwrap();
+    let d = Scenario::default();
+    assert_eq!(s.initial, Some(example_initial(&d)));
+    assert_eq!(s.seafloor.file.as_deref(), Some(EXAMPLE_FLOOR_FILE));
+    let mut expect = full_default();
+    expect.initial = Some(example_initial(&d));
+    assert_eq!(s, expect);
+    // Every example AUV is within d_s of the USV (C1_6 at k = 0) and under water.
+    for p in &s.initial.unwrap().auvs {
+        assert!(p[0].hypot(p[1]) <= d.acoustic.sonar_range);
+        assert!(p[2] < -d.auv.surface_clearance);
+    }
+}
+
+#[test]
+fn default_is_valid() {
+    assert_eq!(validate(&Scenario::default()), Ok(()));
+    assert_eq!(validate(&full_default()), Ok(()));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Loading and overrides
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn empty_file_is_the_default() {
+    assert_eq!(parse("").unwrap(), Scenario::default());
+    assert_eq!(parse("# only a comment\n\n").unwrap(), Scenario::default());
+}
+
+#[test]
+fn overrides_change_exactly_the_named_key() {
+    let s = parse_with(
+        "",
+        &[
+            "acoustic.sonar_range=120",
+            "seed=7",
+            "usv.destination=[100,2]",
+            "seafloor.synthetic.cell = 50",
+            "team.auvs=3",
+        ],
+    )
+    .unwrap();
+    let mut want = Scenario::default();
+    want.acoustic.sonar_range = 120.0;
+    want.seed = 7;
+    want.usv.destination = [100.0, 2.0];
+    want.seafloor.synthetic.cell = 50.0;
+    want.team.auvs = 3;
+    assert_eq!(s, want);
+}
+
+#[test]
+fn overrides_apply_over_the_file_and_later_wins() {
+    let text = "seed = 3\n[acoustic]\nsonar_range = 100.0\n";
+    let s = parse_with(text, &["acoustic.sonar_range=90", "seed=4", "seed=5"]).unwrap();
+    let mut want = Scenario::default();
+    want.seed = 5;
+    want.acoustic.sonar_range = 90.0;
+    assert_eq!(s, want);
+    // Into inline tables and dotted keys of the file as well.
+    let s = parse_with(
+        "acoustic = { sonar_range = 100.0 }\nusv.max_speed = 1.0\n",
+        &["acoustic.max_range=300", "usv.destination=[1,2]"],
+    )
+    .unwrap();
+    assert_eq!(s.acoustic.sonar_range, 100.0);
+    assert_eq!(s.acoustic.max_range, 300.0);
+    assert_eq!(s.usv.max_speed, 1.0);
+    assert_eq!(s.usv.destination, [1.0, 2.0]);
+}
+
+#[test]
+fn bare_string_override() {
+    let s = default_with(&set(&[
+        "usv.objective=destination",
+        "auv.discretisation = euler",
+    ]))
+    .unwrap();
+    assert_eq!(s.usv.objective, UsvObjective::Destination);
+    assert_eq!(s.auv.discretisation, Discretisation::Euler);
+    let s = default_with(&set(&["seafloor.file=floors/a b.asc"])).unwrap();
+    assert_eq!(s.seafloor.file.as_deref(), Some("floors/a b.asc"));
+    let s = default_with(&set(&["seafloor.file=\"quoted.asc\""])).unwrap();
+    assert_eq!(s.seafloor.file.as_deref(), Some("quoted.asc"));
+}
+
+#[test]
+fn initial_can_be_given_by_overrides() {
+    let s = default_with(&set(&[
+        "team.auvs=2",
+        "initial={usv=[1,2], auvs=[[0,0,-5],[10,0,-6]]}",
+    ]))
+    .unwrap();
+    let init = s.initial.unwrap();
+    assert_eq!(init.usv, [1.0, 2.0]);
+    assert_eq!(init.auvs, vec![[0.0, 0.0, -5.0], [10.0, 0.0, -6.0]]);
+    let s = parse_with(
+        "",
+        &[
+            "team.auvs=1",
+            "initial.usv=[0,0]",
+            "initial.auvs=[[1,1,-1]]",
+        ],
+    )
+    .unwrap();
+    assert_eq!(s.initial.unwrap().auvs, vec![[1.0, 1.0, -1.0]]);
+}
+
+#[test]
+fn integers_are_accepted_for_floats() {
+    let s = parse("[horizon]\ndt = 50\n").unwrap();
+    assert_eq!(s.horizon.dt, 50.0);
+}
+
+#[test]
+fn load_reads_files_and_reports_io_and_utf8() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("m.toml");
+    std::fs::write(&p, "seed = 9\n").unwrap();
+    assert_eq!(load(&p, &[]).unwrap().seed, 9);
+    assert_eq!(load(&p, &set(&["seed=10"])).unwrap().seed, 10);
+
+    let missing = dir.path().join("nope.toml");
+    let e = load(&missing, &[]).unwrap_err();
+    assert!(matches!(e, ScenarioError::Io { .. }), "{e:?}");
+    assert!(e.to_string().contains("nope.toml"), "{e}");
+
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, b"seed = 1\n# caf\xe9\n").unwrap();
+    let e = load(&bad, &[]).unwrap_err();
+    assert!(matches!(e, ScenarioError::Syntax { line: 2, .. }), "{e:?}");
+    assert!(e.to_string().contains("bad.toml line 2"), "{e}");
+
+    std::fs::write(&p, "[acoustic]\nsonar_range = -5\n").unwrap();
+    let e = load(&p, &[]).unwrap_err();
+    assert!(e.to_string().contains("m.toml line 2"), "{e}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Errors
+// ---------------------------------------------------------------------------------------------
+
+/// The error names the file, the line and the key.
+fn assert_located(e: &ScenarioError, line: usize, key: &str) {
+    let msg = e.to_string();
+    assert!(msg.contains(&format!("{FILE} line {line}")), "{msg}");
+    assert!(msg.contains(key), "{msg}");
+    assert_eq!(e.line(), Some(line), "{msg}");
+    assert_eq!(e.key(), Some(key), "{msg}");
+}
+
+#[test]
+fn example_message_from_the_brief() {
+    let text = "\n\n\n\n\n\n\n\n\n\n[acoustic]\nsonar_range = -5\n";
+    let e = parse(text).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "mission.toml line 12: acoustic.sonar_range = -5: must be a positive number of \
+         metres (d_s, the sonar range)"
+    );
+}
+
+#[test]
+fn unknown_key_top_level_and_nested() {
+    let e = parse("seed = 1\nfoo = 2\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::UnknownKey { .. }), "{e:?}");
+    assert_located(&e, 2, "foo");
+    assert!(
+        e.to_string()
+            .contains("allowed top-level keys: seed, windows"),
+        "{e}"
+    );
+
+    let e = parse("[acoustic]\nsonar_range = 100\nsonar_rnage = 3\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::UnknownKey { .. }), "{e:?}");
+    assert_located(&e, 3, "acoustic.sonar_rnage");
+    assert!(
+        e.to_string().contains(
+            "allowed keys in [acoustic]: sonar_range, band_tolerance, max_range, resolution"
+        ),
+        "{e}"
+    );
+
+    let e = parse("[seafloor.synthetic]\nsize = [1000, 1000]\nbumps = 3\n").unwrap_err();
+    assert_located(&e, 3, "seafloor.synthetic.bumps");
+
+    let e = parse("[nope]\nx = 1\n").unwrap_err();
+    assert_located(&e, 1, "nope");
+
+    let e = parse("auv.speed = 1\n").unwrap_err();
+    assert_located(&e, 1, "auv.speed");
+
+    let e = parse("[initial]\nusv = [0, 0]\nauvs = []\nextra = 1\n").unwrap_err();
+    assert_located(&e, 4, "initial.extra");
+}
+
+#[test]
+fn wrong_type() {
+    let e = parse("[acoustic]\nsonar_range = \"far\"\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 2, "acoustic.sonar_range");
+    assert!(e.to_string().contains("expected a number"), "{e}");
+
+    let e = parse("\nseed = 1.5\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 2, "seed");
+
+    let e = parse("[usv]\ndestination = [1, 2, 3]\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 2, "usv.destination");
+    assert!(e.to_string().contains("an array of 2 numbers"), "{e}");
+
+    let e = parse("team = 5\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 1, "team");
+
+    let e = parse("[initial]\nusv = [0, 0]\nauvs = [\n  [0, 0, -1],\n  [0, \"x\", -1],\n]\n")
+        .unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 5, "initial.auvs[1][1]");
+
+    let e = parse("[auv]\ndiscretisation = \"rk4\"\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::OutOfRange { .. }), "{e:?}");
+    assert_located(&e, 2, "auv.discretisation");
+    assert!(e.to_string().contains("\"zoh\", \"euler\""), "{e}");
+
+    let e = parse("[team]\nauvs = -3\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::OutOfRange { .. }), "{e:?}");
+    assert_located(&e, 2, "team.auvs");
+}
+
+#[test]
+fn fixed_size_arrays_have_exact_length() {
+    let sch = super::schema::Schema::new();
+    assert_eq!(sch.fixed_len("usv.destination"), Some(2));
+    assert_eq!(sch.fixed_len("seafloor.synthetic.depth_range"), Some(2));
+    assert_eq!(sch.fixed_len("initial.usv"), Some(2));
+    assert_eq!(sch.fixed_len("initial.auvs"), None);
+    assert_eq!(sch.fixed_len("initial.auvs[]"), Some(3));
+
+    // toml_edit alone would read [1, 2, 3] as [1, 2]; we refuse it.
+    let e =
+        parse("[team]\nauvs = 1\n[initial]\nusv = [0, 0]\nauvs = [[0, 0, -1, 7]]\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 5, "initial.auvs[0]");
+    assert!(e.to_string().contains("an array of 4 elements"), "{e}");
+
+    let e = parse("[seafloor.synthetic]\nrelief = [1]\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 2, "seafloor.synthetic.relief");
+
+    let e = parse_with("", &["usv.destination=[1, 2, 3]"]).unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_eq!(e.source_name(), "--set usv.destination=[1, 2, 3]");
+}
+
+#[test]
+fn wrong_type_of_sections_enums_and_dates() {
+    let e = parse("[[initial]]\nusv = [0, 0]\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 1, "initial");
+    let e = parse("[auv]\ndiscretisation = 3\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 2, "auv.discretisation");
+    assert!(e.to_string().contains("found integer 3"), "{e}");
+    let e = parse("seed = 1979-05-27\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_located(&e, 1, "seed");
+}
+
+#[test]
+fn missing_key_in_initial() {
+    let e = parse("seed = 2\n[initial]\nusv = [0, 0]\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::MissingKey { .. }), "{e:?}");
+    assert_located(&e, 2, "initial.auvs");
+}
+
+#[test]
+fn syntax_error() {
+    let e = parse("seed = 1\n[acoustic\nsonar_range = 3\n").unwrap_err();
+    match &e {
+        ScenarioError::Syntax {
+            source_name, line, ..
+        } => {
+            assert_eq!(source_name, FILE);
+            assert_eq!(*line, 2);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(
+        e.to_string().starts_with("mission.toml line 2, column"),
+        "{e}"
+    );
+    let e = parse("seed = 1\nseed = 2\n").unwrap_err();
+    assert!(matches!(e, ScenarioError::Syntax { line: 2, .. }), "{e:?}");
+}
+
+#[test]
+fn out_of_range_rules() {
+    // (file text, key at fault, line). Every rule of validate().
+    let cases: &[(&str, &str, usize)] = &[
+        ("windows = 0", "windows", 1),
+        ("[team]\nauvs = 0", "team.auvs", 2),
+        ("[team]\nauvs = 65", "team.auvs", 2),
+        ("[horizon]\nsteps = 0", "horizon.steps", 2),
+        ("[horizon]\nsteps = 1001", "horizon.steps", 2),
+        ("[horizon]\ndt = 0", "horizon.dt", 2),
+        ("[horizon]\ndt = inf", "horizon.dt", 2),
+        ("[acoustic]\nsonar_range = -5", "acoustic.sonar_range", 2),
+        ("[acoustic]\nsonar_range = nan", "acoustic.sonar_range", 2),
+        (
+            "[acoustic]\nband_tolerance = 0",
+            "acoustic.band_tolerance",
+            2,
+        ),
+        (
+            "[acoustic]\nband_tolerance = 150",
+            "acoustic.band_tolerance",
+            2,
+        ),
+        ("[acoustic]\nmax_range = 149", "acoustic.max_range", 2),
+        ("[acoustic]\nresolution = 0", "acoustic.resolution", 2),
+        ("[auv]\nmax_speed = 0", "auv.max_speed", 2),
+        ("[auv]\nmax_heading_rate = 0", "auv.max_heading_rate", 2),
+        (
+            "[auv]\nmin_heading_speed = -0.1",
+            "auv.min_heading_speed",
+            2,
+        ),
+        ("[auv]\nmin_heading_speed = 2", "auv.min_heading_speed", 2),
+        ("[auv]\nfloor_clearance = -1", "auv.floor_clearance", 2),
+        ("[auv]\nsurface_clearance = -1", "auv.surface_clearance", 2),
+        ("[auv]\nmass = 0", "auv.mass", 2),
+        ("[auv]\nadded_mass_surge = 1", "auv.added_mass_surge", 2),
+        ("[auv]\nadded_mass_heave = 0.5", "auv.added_mass_heave", 2),
+        ("[auv]\ndamping_surge = 4.86", "auv.damping_surge", 2),
+        ("[auv]\ndamping_heave = 1", "auv.damping_heave", 2),
+        ("[auv]\ninertia_yaw = 0", "auv.inertia_yaw", 2),
+        (
+            "[auv]\nadded_inertia_yaw = 4.88",
+            "auv.added_inertia_yaw",
+            2,
+        ),
+        ("[auv]\ndamping_yaw = 18.8", "auv.damping_yaw", 2),
+        ("[usv]\nmax_speed = 0", "usv.max_speed", 2),
+        ("[usv]\ndestination = [nan, 0]", "usv.destination", 2),
+        ("[usv]\ninitial_heading = inf", "usv.initial_heading", 2),
+        ("[weights]\nw1 = -1", "weights.w1", 2),
+        ("[weights]\nw5 = -1e-9", "weights.w5", 2),
+        ("[weights]\nw8_2 = -1", "weights.w8_2", 2),
+        ("[seafloor]\nfile = \"\"", "seafloor.file", 2),
+        (
+            "[seafloor.synthetic]\nsize = [0, 100]",
+            "seafloor.synthetic.size",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\ncell = 0",
+            "seafloor.synthetic.cell",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nsize = [250001, 100]",
+            "seafloor.synthetic.size",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nbase_depth = nan",
+            "seafloor.synthetic.base_depth",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nslope = [0, inf]",
+            "seafloor.synthetic.slope",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nseamounts = 10001",
+            "seafloor.synthetic.seamounts",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nvalleys = 10001",
+            "seafloor.synthetic.valleys",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nrelief = [0, 1]",
+            "seafloor.synthetic.relief",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nrelief = [2, 1]",
+            "seafloor.synthetic.relief",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nradius = [-1, 1]",
+            "seafloor.synthetic.radius",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\nradius = [5, 4]",
+            "seafloor.synthetic.radius",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\ndepth_range = [-50, -140]",
+            "seafloor.synthetic.depth_range",
+            2,
+        ),
+        (
+            "[seafloor.synthetic]\ndepth_range = [-140, 0]",
+            "seafloor.synthetic.depth_range",
+            2,
+        ),
+        ("[scp]\nmax_iterations = 0", "scp.max_iterations", 2),
+        ("[scp]\ntolerance = 0", "scp.tolerance", 2),
+        ("[scp]\nfeasibility_tol = -1", "scp.feasibility_tol", 2),
+        ("[scp]\ntrust_region = 0", "scp.trust_region", 2),
+        ("[scp]\nmin_trust_region = 0", "scp.min_trust_region", 2),
+        ("[scp]\nmin_trust_region = 200", "scp.min_trust_region", 2),
+        ("[scp]\npenalty = 0", "scp.penalty", 2),
+        (
+            "[team]\nauvs = 1\n[initial]\nusv = [inf, 0]\nauvs = [[0, 0, -1]]",
+            "initial.usv",
+            4,
+        ),
+        (
+            "[team]\nauvs = 2\n[initial]\nusv = [0, 0]\nauvs = [[0, 0, -1], [0, 0, 0]]",
+            "initial.auvs[1]",
+            5,
+        ),
+        (
+            "[team]\nauvs = 1\n[initial]\nusv = [0, 0]\nauvs = [[0, nan, -1]]",
+            "initial.auvs[0]",
+            5,
+        ),
+    ];
+    for (text, key, line) in cases {
+        let e = parse(text).unwrap_err();
+        assert!(
+            matches!(e, ScenarioError::OutOfRange { .. }),
+            "{text}: {e:?}"
+        );
+        assert_located(&e, *line, key);
+    }
+}
+
+#[test]
+fn max_range_below_sonar_range_says_so() {
+    let e = parse("[acoustic]\nsonar_range = 500\n").unwrap_err();
+    let msg = e.to_string();
+    // The rule is on max_range; it was broken by setting sonar_range on line 2.
+    assert_eq!(e.key(), Some("acoustic.max_range"));
+    assert_eq!(e.line(), Some(2));
+    assert!(msg.contains("400 (default)"), "{msg}");
+    assert!(msg.contains("d_s > d_max is an error"), "{msg}");
+}
+
+#[test]
+fn initial_length_mismatch_names_both_numbers() {
+    let text = "[initial]\nusv = [0, 0]\nauvs = [[0, 0, -10], [5, 5, -10]]\n";
+    let e = parse(text).unwrap_err();
+    assert!(matches!(e, ScenarioError::OutOfRange { .. }), "{e:?}");
+    assert_located(&e, 3, "initial.auvs");
+    let msg = e.to_string();
+    assert!(msg.contains("team.auvs = 5"), "{msg}");
+    assert!(msg.contains("lists 2"), "{msg}");
+}
+
+#[test]
+fn bad_override_syntax() {
+    for o in [
+        "novalue",
+        "=3",
+        "acoustic..sonar_range=1",
+        "acoustic.sonar_range=",
+        "initial.auvs[0]=[1,2,3]",
+        "usv.destination.x=1",
+        " . =1",
+    ] {
+        let e = parse_with("", &[o]).unwrap_err();
+        assert!(matches!(e, ScenarioError::BadOverride { .. }), "{o}: {e:?}");
+        assert!(e.to_string().starts_with("--set "), "{e}");
+        assert_eq!(e.line(), None);
+    }
+}
+
+#[test]
+fn override_of_unknown_key() {
+    let e = parse_with("", &["acoustic.sonar_rnage=1"]).unwrap_err();
+    assert!(matches!(e, ScenarioError::UnknownKey { .. }), "{e:?}");
+    assert_eq!(e.key(), Some("acoustic.sonar_rnage"));
+    assert_eq!(e.source_name(), "--set acoustic.sonar_rnage=1");
+    let msg = e.to_string();
+    assert!(msg.starts_with("--set acoustic.sonar_rnage=1: "), "{msg}");
+    assert!(
+        msg.contains("allowed keys in [acoustic]: sonar_range"),
+        "{msg}"
+    );
+
+    let e = parse_with("", &["nope.x=1"]).unwrap_err();
+    assert!(matches!(e, ScenarioError::UnknownKey { .. }), "{e:?}");
+    assert_eq!(e.key(), Some("nope"));
+    assert!(
+        e.to_string().contains("allowed top-level keys: seed"),
+        "{e}"
+    );
+}
+
+#[test]
+fn override_errors_are_reported_against_the_override() {
+    let text = "[acoustic]\nsonar_range = 100\n";
+    let e = parse_with(text, &["seed=3", "acoustic.sonar_range=far"]).unwrap_err();
+    assert!(matches!(e, ScenarioError::WrongType { .. }), "{e:?}");
+    assert_eq!(e.source_name(), "--set acoustic.sonar_range=far");
+    assert_eq!(e.line(), None);
+    assert_eq!(e.key(), Some("acoustic.sonar_range"));
+
+    let e = parse_with(text, &["acoustic.sonar_range=-1"]).unwrap_err();
+    assert!(matches!(e, ScenarioError::OutOfRange { .. }), "{e:?}");
+    assert_eq!(
+        e.to_string(),
+        "--set acoustic.sonar_range=-1: acoustic.sonar_range = -1: must be a positive number \
+         of metres (d_s, the sonar range)"
+    );
+
+    // A cross-key rule broken by an override is blamed on the override.
+    let e = default_with(&set(&["acoustic.sonar_range=500"])).unwrap_err();
+    assert_eq!(e.source_name(), "--set acoustic.sonar_range=500");
+    assert_eq!(e.key(), Some("acoustic.max_range"));
+
+    let e = parse_with("", &["initial.usv=[0,0]"]).unwrap_err();
+    assert!(matches!(e, ScenarioError::MissingKey { .. }), "{e:?}");
+    assert_eq!(e.source_name(), "--set initial.usv=[0,0]");
+    assert_eq!(e.key(), Some("initial.auvs"));
+
+    let e = parse_with("", &["team.auvs=2", "initial={usv=[0,0], auvs=[[0,0,-1]]}"]).unwrap_err();
+    assert_eq!(
+        e.source_name(),
+        "--set initial={usv=[0,0], auvs=[[0,0,-1]]}"
+    );
+    assert!(e.to_string().contains("team.auvs = 2"), "{e}");
+
+    let e = default_with(&set(&["usv.objective=north"])).unwrap_err();
+    assert!(matches!(e, ScenarioError::OutOfRange { .. }), "{e:?}");
+    assert_eq!(e.source_name(), "--set usv.objective=north");
+    assert!(e.to_string().contains("\"away\", \"destination\""), "{e}");
+
+    // The file's own errors still come first and name the file.
+    let e = parse_with("bogus = 1\n", &["seed=2"]).unwrap_err();
+    assert_eq!(e.source_name(), FILE);
+    assert_eq!(e.line(), Some(1));
+}
+
+#[test]
+fn embedded_default_errors_name_it() {
+    let e = from_toml_str("[horizon\n", EMBEDDED_DEFAULT, &[]).unwrap_err();
+    assert!(e.to_string().starts_with("embedded default line 1"), "{e}");
+}
+
+/// Every float of the scenario, anywhere (arrays included), is checked for finiteness.
+#[test]
+fn every_float_must_be_finite() {
+    let mut keys = Vec::new();
+    let t = full_default_table();
+    leaf_keys(&t, "", &mut keys);
+    let base = template_uncommented();
+    let lookup = |key: &str| -> toml::Value {
+        let mut v = toml::Value::Table(t.clone());
+        for seg in key.split('.') {
+            v = v.get(seg).cloned().unwrap();
+        }
+        v
+    };
+    let mut checked = 0;
+    for key in keys {
+        let v = lookup(&key);
+        let variants: Vec<(String, String)> = match &v {
+            toml::Value::Float(_) => vec![("nan".into(), key.clone())],
+            toml::Value::Array(a) => (0..a.len())
+                .filter_map(|i| match &a[i] {
+                    toml::Value::Float(_) => {
+                        let parts: Vec<String> = (0..a.len())
+                            .map(|j| {
+                                if j == i {
+                                    "nan".into()
+                                } else {
+                                    a[j].to_string()
+                                }
+                            })
+                            .collect();
+                        Some((format!("[{}]", parts.join(", ")), key.clone()))
+                    }
+                    toml::Value::Array(inner) => {
+                        // initial.auvs: poison element i's x.
+                        let mut rows: Vec<String> = a.iter().map(|r| r.to_string()).collect();
+                        let mut row: Vec<String> = inner.iter().map(|x| x.to_string()).collect();
+                        row[0] = "nan".into();
+                        rows[i] = format!("[{}]", row.join(", "));
+                        Some((format!("[{}]", rows.join(", ")), format!("{key}[{i}]")))
+                    }
+                    _ => None,
+                })
+                .collect(),
+            _ => vec![],
+        };
+        for (value, want_key) in variants {
+            let o = format!("{key}={value}");
+            let e = from_toml_str(&base, FILE, std::slice::from_ref(&o)).unwrap_err();
+            assert!(matches!(e, ScenarioError::OutOfRange { .. }), "{o}: {e:?}");
+            assert_eq!(e.key(), Some(want_key.as_str()), "{o}: {e}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 40, "only {checked} floats checked");
+}
+
+#[test]
+fn errors_are_deterministic() {
+    let text = "windows = 0\n[team]\nauvs = 0\n";
+    let a = parse(text).unwrap_err().to_string();
+    let b = parse(text).unwrap_err().to_string();
+    assert_eq!(a, b);
+    assert!(a.contains("windows"), "{a}");
+    let v = validate(
+        &parse("")
+            .map(|mut s| {
+                s.windows = 0;
+                s.team.auvs = 0;
+                s
+            })
+            .unwrap(),
+    )
+    .unwrap_err();
+    assert_eq!(v.len(), 2);
+    assert_eq!(v[0].key, "windows");
+    assert_eq!(v[1].key, "team.auvs");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Never panic
+// ---------------------------------------------------------------------------------------------
+
+fn tomlish() -> impl Strategy<Value = String> {
+    let key = prop_oneof![
+        Just("seed"),
+        Just("windows"),
+        Just("team.auvs"),
+        Just("auvs"),
+        Just("sonar_range"),
+        Just("acoustic.max_range"),
+        Just("usv.destination"),
+        Just("destination"),
+        Just("initial.auvs"),
+        Just("usv"),
+        Just("auvs"),
+        Just("file"),
+        Just("size"),
+        Just("x.y.z"),
+        Just("\"quoted key\""),
+    ];
+    let value = prop_oneof![
+        Just("1".to_string()),
+        Just("-1".to_string()),
+        Just("0".to_string()),
+        Just("1e400".to_string()),
+        Just("nan".to_string()),
+        Just("-inf".to_string()),
+        Just("\"away\"".to_string()),
+        Just("\"\"".to_string()),
+        Just("[1, 2]".to_string()),
+        Just("[[1, 2, -3]]".to_string()),
+        Just("[[1, 2, 3], [\"a\"]]".to_string()),
+        Just("{ usv = [0, 0], auvs = [] }".to_string()),
+        Just("[]".to_string()),
+        Just("true".to_string()),
+        Just("1979-05-27T07:32:00Z".to_string()),
+        Just("9223372036854775807".to_string()),
+        any::<f64>().prop_map(|f| format!("{f:?}")),
+        any::<i64>().prop_map(|i| i.to_string()),
+        "[ -~]{0,12}",
+    ];
+    let header = prop_oneof![
+        Just("[team]"),
+        Just("[acoustic]"),
+        Just("[auv]"),
+        Just("[usv]"),
+        Just("[seafloor]"),
+        Just("[seafloor.synthetic]"),
+        Just("[initial]"),
+        Just("[[initial]]"),
+        Just("[scp]"),
+        Just("[bogus]"),
+        Just("["),
+    ];
+    let line = prop_oneof![
+        3 => (key, value).prop_map(|(k, v)| format!("{k} = {v}")),
+        1 => header.prop_map(str::to_string),
+        1 => "[ -~]{0,20}",
+    ];
+    prop::collection::vec(line, 0..12).prop_map(|ls| ls.join("\n"))
+}
+
+fn override_text() -> impl Strategy<Value = String> {
+    prop_oneof![
+        Just("seed=7".to_string()),
+        Just("team.auvs=2".to_string()),
+        Just("initial.usv=[0,0]".to_string()),
+        Just("usv=3".to_string()),
+        Just("acoustic.sonar_range=x".to_string()),
+        Just("initial={usv=[0,0],auvs=[[0,0,-1]]}".to_string()),
+        "[ -~]{0,30}",
+        any::<String>(),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn arbitrary_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..400)) {
+        let text = String::from_utf8_lossy(&bytes);
+        let _ = from_toml_str(&text, FILE, &[]);
+    }
+
+    #[test]
+    fn arbitrary_tomlish_text_never_panics(
+        text in tomlish(),
+        overrides in prop::collection::vec(override_text(), 0..4),
+    ) {
+        match from_toml_str(&text, FILE, &overrides) {
+            Ok(s) => prop_assert!(validate(&s).is_ok()),
+            Err(e) => {
+                // Every message names its source.
+                let msg = e.to_string();
+                prop_assert!(msg.starts_with(FILE) || msg.starts_with("--set "), "{}", msg);
+            }
+        }
+    }
+
+    #[test]
+    fn mutated_template_never_panics(
+        cut in any::<prop::sample::Index>(),
+        len in 0usize..40,
+        insert in "[ -~\n]{0,8}",
+        overrides in prop::collection::vec(override_text(), 0..3),
+    ) {
+        let t = default_toml();
+        let mut bytes = t.into_bytes();
+        let at = cut.index(bytes.len());
+        let end = (at + len).min(bytes.len());
+        bytes.splice(at..end, insert.bytes());
+        let text = String::from_utf8_lossy(&bytes);
+        if let Err(e) = from_toml_str(&text, FILE, &overrides) {
+            let msg = e.to_string();
+            prop_assert!(msg.starts_with(FILE) || msg.starts_with("--set "), "{}", msg);
+        }
+    }
+
+    #[test]
+    fn arbitrary_overrides_on_the_default_never_panic(
+        overrides in prop::collection::vec(override_text(), 0..4),
+    ) {
+        let _ = default_with(&overrides);
+    }
+}

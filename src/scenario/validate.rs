@@ -1,0 +1,416 @@
+//! Range checks on a deserialised scenario. Types are checked by deserialisation; this checks
+//! values (and relations between values) that no type can express.
+
+use super::Scenario;
+
+/// One broken rule: the dotted key at fault (array elements as `key[i]`), its value as written
+/// for a person, and what is allowed. `related` names other keys the rule involves (e.g.
+/// `acoustic.sonar_range` for `acoustic.max_range ≥ acoustic.sonar_range`); the loaders point at
+/// whichever of `key` and `related` was set last, since that is the setting that broke the rule.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Violation {
+    pub key: String,
+    pub value: String,
+    pub allowed: String,
+    pub related: Vec<String>,
+}
+
+impl std::fmt::Display for Violation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} = {}: {}", self.key, self.value, self.allowed)
+    }
+}
+
+/// Largest team the planner accepts (the problem size grows with N²).
+pub const MAX_AUVS: usize = 64;
+/// Largest horizon, in steps.
+pub const MAX_STEPS: usize = 1000;
+/// Largest synthetic grid, in cells per side.
+pub const MAX_CELLS_PER_SIDE: f64 = 10_000.0;
+/// Largest number of synthetic seamounts, and of valleys.
+pub const MAX_FEATURES: usize = 10_000;
+
+#[derive(Default)]
+struct Checker {
+    out: Vec<Violation>,
+}
+
+fn num(x: f64) -> String {
+    format!("{x}")
+}
+
+fn arr(xs: &[f64]) -> String {
+    let parts: Vec<String> = xs.iter().map(|x| num(*x)).collect();
+    format!("[{}]", parts.join(", "))
+}
+
+impl Checker {
+    fn push(&mut self, key: &str, value: String, allowed: String, related: &[&str]) {
+        self.out.push(Violation {
+            key: key.to_string(),
+            value,
+            allowed,
+            related: related.iter().map(|s| s.to_string()).collect(),
+        });
+    }
+
+    /// A float that must be finite and satisfy `ok`.
+    fn float(&mut self, key: &str, x: f64, ok: bool, allowed: impl Into<String>) {
+        if !(x.is_finite() && ok) {
+            self.push(key, num(x), allowed.into(), &[]);
+        }
+    }
+
+    fn float_rel(&mut self, key: &str, x: f64, ok: bool, allowed: String, related: &[&str]) {
+        if !(x.is_finite() && ok) {
+            self.push(key, num(x), allowed, related);
+        }
+    }
+
+    fn positive(&mut self, key: &str, x: f64, what: &str) {
+        self.float(key, x, x > 0.0, format!("must be a positive number {what}"));
+    }
+
+    fn non_negative(&mut self, key: &str, x: f64, what: &str) {
+        self.float(key, x, x >= 0.0, format!("must be a number ≥ 0 {what}"));
+    }
+
+    fn non_positive(&mut self, key: &str, x: f64, what: &str) {
+        self.float(
+            key,
+            x,
+            x <= 0.0,
+            format!("must be ≤ 0 {what} (Fossen's sign convention: negative)"),
+        );
+    }
+
+    fn finite(&mut self, key: &str, x: f64, what: &str) {
+        self.float(key, x, true, format!("must be a finite number {what}"));
+    }
+
+    fn finite_arr(&mut self, key: &str, xs: &[f64], allowed: &str) {
+        if xs.iter().any(|x| !x.is_finite()) {
+            self.push(key, arr(xs), allowed.to_string(), &[]);
+        }
+    }
+
+    fn int(&mut self, key: &str, n: usize, ok: bool, allowed: impl Into<String>) {
+        if !ok {
+            self.push(key, n.to_string(), allowed.into(), &[]);
+        }
+    }
+
+    /// [lo, hi] with 0 < lo ≤ hi.
+    fn range_pair(&mut self, key: &str, p: [f64; 2], what: &str) {
+        let ok = p.iter().all(|x| x.is_finite()) && p[0] > 0.0 && p[0] <= p[1];
+        if !ok {
+            self.push(
+                key,
+                arr(&p),
+                format!("must be [lo, hi] {what} with 0 < lo ≤ hi"),
+                &[],
+            );
+        }
+    }
+}
+
+/// Check every range rule. Returns all broken rules, in a fixed order (the order of the fields
+/// in the file); the loaders report the first.
+pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
+    let mut c = Checker::default();
+
+    c.int(
+        "windows",
+        s.windows,
+        s.windows >= 1,
+        "must be an integer ≥ 1 (number of receding-horizon windows)",
+    );
+    c.int(
+        "team.auvs",
+        s.team.auvs,
+        (1..=MAX_AUVS).contains(&s.team.auvs),
+        format!("must be an integer from 1 to {MAX_AUVS} (N, the number of AUVs)"),
+    );
+    c.int(
+        "horizon.steps",
+        s.horizon.steps,
+        (1..=MAX_STEPS).contains(&s.horizon.steps),
+        format!("must be an integer from 1 to {MAX_STEPS} (K, time steps per window)"),
+    );
+    c.positive(
+        "horizon.dt",
+        s.horizon.dt,
+        "of seconds (δ, the sampling time)",
+    );
+
+    // Acoustic.
+    let a = &s.acoustic;
+    c.positive(
+        "acoustic.sonar_range",
+        a.sonar_range,
+        "of metres (d_s, the sonar range)",
+    );
+    c.float_rel(
+        "acoustic.band_tolerance",
+        a.band_tolerance,
+        a.band_tolerance > 0.0 && a.band_tolerance < a.sonar_range,
+        format!(
+            "must be a number of metres with 0 < d_t < d_s = acoustic.sonar_range = {}",
+            num(a.sonar_range)
+        ),
+        &["acoustic.sonar_range"],
+    );
+    c.float_rel(
+        "acoustic.max_range",
+        a.max_range,
+        a.max_range >= a.sonar_range,
+        format!(
+            "must be a number of metres ≥ d_s = acoustic.sonar_range = {} (d_max of C1_5 \
+             must be at least the sonar range d_s of C1_6; d_s > d_max is an error)",
+            num(a.sonar_range)
+        ),
+        &["acoustic.sonar_range"],
+    );
+    c.positive(
+        "acoustic.resolution",
+        a.resolution,
+        "of metres (r, step of the line-of-sight sampling 𝓛_r)",
+    );
+
+    // AUV.
+    let v = &s.auv;
+    c.positive("auv.max_speed", v.max_speed, "of m/s (V_max of C1_7)");
+    c.positive(
+        "auv.max_heading_rate",
+        v.max_heading_rate,
+        "of rad/s (ψ̇_max of C1_14)",
+    );
+    c.float_rel(
+        "auv.min_heading_speed",
+        v.min_heading_speed,
+        v.min_heading_speed >= 0.0 && v.min_heading_speed < v.max_speed,
+        format!(
+            "must be a number of m/s with 0 ≤ value < auv.max_speed = {}",
+            num(v.max_speed)
+        ),
+        &["auv.max_speed"],
+    );
+    c.non_negative(
+        "auv.floor_clearance",
+        v.floor_clearance,
+        "metres (ε of C2_2)",
+    );
+    c.non_negative(
+        "auv.surface_clearance",
+        v.surface_clearance,
+        "metres (C1_4)",
+    );
+    c.positive("auv.mass", v.mass, "of kg (m)");
+    c.non_positive("auv.added_mass_surge", v.added_mass_surge, "kg (γ_v̇x, X_u̇)");
+    c.non_positive("auv.added_mass_heave", v.added_mass_heave, "kg (γ_v̇z, Z_ẇ)");
+    // With mass > 0 and added masses ≤ 0 these hold; kept so the model's divisors are
+    // guarded here even if the sign rules above are ever relaxed.
+    if v.mass.is_finite() && v.added_mass_surge.is_finite() {
+        c.float_rel(
+            "auv.added_mass_surge",
+            v.added_mass_surge,
+            v.mass - v.added_mass_surge > 0.0,
+            "auv.mass − auv.added_mass_surge must be > 0".to_string(),
+            &["auv.mass"],
+        );
+    }
+    if v.mass.is_finite() && v.added_mass_heave.is_finite() {
+        c.float_rel(
+            "auv.added_mass_heave",
+            v.added_mass_heave,
+            v.mass - v.added_mass_heave > 0.0,
+            "auv.mass − auv.added_mass_heave must be > 0".to_string(),
+            &["auv.mass"],
+        );
+    }
+    c.non_positive("auv.damping_surge", v.damping_surge, "kg/s (γ_vx, X_u)");
+    c.non_positive("auv.damping_heave", v.damping_heave, "kg/s (γ_vz, Z_w)");
+    c.positive("auv.inertia_yaw", v.inertia_yaw, "of kg·m² (J_z)");
+    c.non_positive("auv.added_inertia_yaw", v.added_inertia_yaw, "kg·m² (N_ṙ)");
+    if v.inertia_yaw.is_finite() && v.added_inertia_yaw.is_finite() {
+        c.float_rel(
+            "auv.added_inertia_yaw",
+            v.added_inertia_yaw,
+            v.inertia_yaw - v.added_inertia_yaw > 0.0,
+            "auv.inertia_yaw − auv.added_inertia_yaw must be > 0".to_string(),
+            &["auv.inertia_yaw"],
+        );
+    }
+    c.non_positive("auv.damping_yaw", v.damping_yaw, "kg·m²/s (γ_ωz, N_r)");
+
+    // USV.
+    let u = &s.usv;
+    c.positive("usv.max_speed", u.max_speed, "of m/s");
+    c.finite_arr(
+        "usv.destination",
+        &u.destination,
+        "must be two finite numbers [x, y] in metres (P_USV[∞] of OF1_8_2)",
+    );
+    c.finite("usv.initial_heading", u.initial_heading, "of radians");
+
+    // Weights.
+    let w = &s.weights;
+    for (key, x, sym) in [
+        ("weights.w1", w.w1, "w1 of OF1_1"),
+        ("weights.w2", w.w2, "w2 of OF1_2"),
+        ("weights.w3", w.w3, "w3 of OF1_3"),
+        ("weights.w4", w.w4, "w4 of OF1_4"),
+        ("weights.w5", w.w5, "w5 of OF1_5"),
+        ("weights.w6", w.w6, "w6 of OF1_6"),
+        ("weights.w7", w.w7, "w7 of OF1_7"),
+        ("weights.w8", w.w8, "w8 of OF1_8"),
+        ("weights.w8_2", w.w8_2, "w8_2 of OF1_8_2"),
+    ] {
+        c.non_negative(key, x, &format!("({sym})"));
+    }
+
+    // Seafloor.
+    if let Some(f) = &s.seafloor.file {
+        if f.trim().is_empty() {
+            c.push(
+                "seafloor.file",
+                format!("{f:?}"),
+                "must be the path of an ESRI ASCII grid (leave the key out to use the \
+                 synthetic floor)"
+                    .to_string(),
+                &[],
+            );
+        }
+    }
+    let g = &s.seafloor.synthetic;
+    if !(g.size.iter().all(|x| x.is_finite() && *x > 0.0)) {
+        c.push(
+            "seafloor.synthetic.size",
+            arr(&g.size),
+            "must be two positive numbers [x, y] of metres".to_string(),
+            &[],
+        );
+    }
+    c.positive("seafloor.synthetic.cell", g.cell, "of metres");
+    if g.cell.is_finite() && g.cell > 0.0 && g.size.iter().all(|x| x.is_finite()) {
+        let cells = g.size[0].max(g.size[1]) / g.cell;
+        if cells > MAX_CELLS_PER_SIDE {
+            c.push(
+                "seafloor.synthetic.size",
+                arr(&g.size),
+                format!(
+                    "size / seafloor.synthetic.cell = {} cells per side; at most {} allowed \
+                     (enlarge the cell or shrink the area)",
+                    num(cells.ceil()),
+                    num(MAX_CELLS_PER_SIDE)
+                ),
+                &["seafloor.synthetic.cell"],
+            );
+        }
+    }
+    c.finite(
+        "seafloor.synthetic.base_depth",
+        g.base_depth,
+        "of metres (elevation)",
+    );
+    c.finite_arr(
+        "seafloor.synthetic.slope",
+        &g.slope,
+        "must be two finite numbers [dZ/dx, dZ/dy]",
+    );
+    c.int(
+        "seafloor.synthetic.seamounts",
+        g.seamounts,
+        g.seamounts <= MAX_FEATURES,
+        format!("must be an integer from 0 to {MAX_FEATURES}"),
+    );
+    c.int(
+        "seafloor.synthetic.valleys",
+        g.valleys,
+        g.valleys <= MAX_FEATURES,
+        format!("must be an integer from 0 to {MAX_FEATURES}"),
+    );
+    c.range_pair("seafloor.synthetic.relief", g.relief, "of metres");
+    c.range_pair("seafloor.synthetic.radius", g.radius, "of metres");
+    let d = g.depth_range;
+    if !(d.iter().all(|x| x.is_finite()) && d[0] < d[1] && d[1] < 0.0) {
+        c.push(
+            "seafloor.synthetic.depth_range",
+            arr(&d),
+            "must be [deepest, shallowest] elevations in metres with deepest < shallowest < 0"
+                .to_string(),
+            &[],
+        );
+    }
+
+    // SCP.
+    let p = &s.scp;
+    c.int(
+        "scp.max_iterations",
+        p.max_iterations,
+        p.max_iterations >= 1,
+        "must be an integer ≥ 1",
+    );
+    c.positive("scp.tolerance", p.tolerance, "(relative decrease)");
+    c.positive(
+        "scp.feasibility_tol",
+        p.feasibility_tol,
+        "(metres, radians)",
+    );
+    c.positive("scp.trust_region", p.trust_region, "of metres");
+    c.float_rel(
+        "scp.min_trust_region",
+        p.min_trust_region,
+        p.min_trust_region > 0.0 && p.min_trust_region < p.trust_region,
+        format!(
+            "must be a number of metres with 0 < value < scp.trust_region = {}",
+            num(p.trust_region)
+        ),
+        &["scp.trust_region"],
+    );
+    c.positive(
+        "scp.penalty",
+        p.penalty,
+        "(λ, merit-function penalty weight)",
+    );
+
+    // Initial state.
+    if let Some(init) = &s.initial {
+        c.finite_arr(
+            "initial.usv",
+            &init.usv,
+            "must be two finite numbers [x, y] in metres (P_USV[0])",
+        );
+        if init.auvs.len() != s.team.auvs {
+            c.push(
+                "initial.auvs",
+                match init.auvs.len() {
+                    1 => "[1 position]".to_string(),
+                    n => format!("[{n} positions]"),
+                },
+                format!(
+                    "must list exactly team.auvs = {} AUV positions, but lists {}",
+                    s.team.auvs,
+                    init.auvs.len()
+                ),
+                &["team.auvs"],
+            );
+        }
+        for (i, p) in init.auvs.iter().enumerate() {
+            if !(p.iter().all(|x| x.is_finite()) && p[2] < 0.0) {
+                c.push(
+                    &format!("initial.auvs[{i}]"),
+                    arr(p),
+                    "must be [x, y, z], finite metres, with z < 0 (under water)".to_string(),
+                    &[],
+                );
+            }
+        }
+    }
+
+    if c.out.is_empty() {
+        Ok(())
+    } else {
+        Err(c.out)
+    }
+}
