@@ -106,11 +106,13 @@ pub struct Stage {
 pub struct ObjectiveTerms {
     /// OF1_1: Σ_k Σ_n ‖U_n[k]‖², (m/s²)².
     pub energy: f64,
-    /// OF1_2: Σ_k Σ_n z_n[k], metres (k = 1..K).
+    /// Σ_k Σ_n z_n[k], metres (k = 1..K): OF1_2 when weights.of1_2 = "depth".
     pub depth: f64,
+    /// Σ_k Σ_n (z_n[k] − Z(x_n[k], y_n[k])), metres: OF1_2 when weights.of1_2 = "height".
+    pub height: f64,
     /// OF1_8: ‖P_USV[K] − P_USV[0]‖², m² (objective "away"), or OF1_8_2: ‖P_USV[K] − dest‖², m².
     pub usv: f64,
-    /// w1·energy + w2·depth − w8·usv (away) or + w8_2·usv (destination).
+    /// w1·energy + w2·(height or depth) − w8·usv (away) or + w8_2·usv (destination).
     pub total: f64,
 }
 

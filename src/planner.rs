@@ -229,6 +229,7 @@ pub fn plan_with_progress(
             objective: ObjectiveTerms {
                 energy: terms.energy,
                 depth: terms.depth,
+                height: terms.height,
                 usv: terms.usv,
                 total: step1.objective(&terms),
             },

@@ -130,13 +130,28 @@ pub struct Usv {
     pub initial_heading: f64,
 }
 
+/// The form of OF1_2 (Section III-A: "enforces the AUVs to navigate close to the sea floor").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DepthObjective {
+    /// Σ (z − Z(x, y)): height above the floor. With C2_2 active it is ε wherever the AUV is, so
+    /// it keeps the AUVs on the floor without pulling them sideways towards deeper ground.
+    Height,
+    /// Σ z, the paper's 𝔷X literally: also rewards moving horizontally to deeper floor, so AUVs
+    /// leave their course to sit in valleys, and the SCP crawls downhill a trust radius at a time.
+    Depth,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Weights {
     /// w1 · OF1_1, input energy Σ‖U‖², per (m/s²)².
     pub w1: f64,
-    /// w2 · OF1_2, Σ z of every AUV (stay deep), per metre.
+    /// w2 · OF1_2, per metre: Σ height above the floor (default) or Σ z (the paper's literal
+    /// form), chosen by `of1_2`.
     pub w2: f64,
+    /// What OF1_2 sums: "height" (z − Z(x, y), near the floor) or "depth" (z, the paper's 𝔷X).
+    pub of1_2: DepthObjective,
     /// w3 · OF1_3 (Step 3), A2U link off its band, per metre.
     pub w3: f64,
     /// w4 · OF1_4 (Step 3), A2A link off its band, per metre.
@@ -283,6 +298,7 @@ impl Default for Weights {
         Weights {
             w1: 1.0e3,
             w2: 1.0,
+            of1_2: DepthObjective::Height,
             w3: 1.0,
             w4: 1.0,
             w5: 1.0e-4,

@@ -3,7 +3,7 @@
 //! to a TOML document. Used to list the keys allowed at each level, to name the type a key
 //! expects, and to generate the template, so that no key or default value is written twice.
 
-use super::{Discretisation, Initial, Scenario, UsvObjective};
+use super::{DepthObjective, Discretisation, Initial, Scenario, UsvObjective};
 use toml_edit::{DocumentMut, Item, TableLike, Value};
 
 /// Example path shown (commented out) for `seafloor.file` in the template.
@@ -224,6 +224,7 @@ pub(crate) fn enum_values(key: &str) -> Option<Vec<String>> {
     match key {
         "auv.discretisation" => Some(names(&[Discretisation::Zoh, Discretisation::Euler])),
         "usv.objective" => Some(names(&[UsvObjective::Away, UsvObjective::Destination])),
+        "weights.of1_2" => Some(names(&[DepthObjective::Height, DepthObjective::Depth])),
         _ => None,
     }
 }

@@ -107,7 +107,12 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "weights.w1" => "w1 · OF1_1: input energy Σ‖𝒰[k]‖², per (m/s²)².",
         "weights.w2" => {
-            "w2 · OF1_2: Σ z of every AUV (keeps them deep, near the floor), per metre."
+            "w2 · OF1_2: keeps the AUVs deep, near the floor, per metre (see of1_2)."
+        }
+        "weights.of1_2" => {
+            "What OF1_2 sums over AUVs and steps: \"height\" = z − Z(x, y), the height above the \
+             floor (ours, default: stays near the floor without pulling AUVs sideways into \
+             valleys); \"depth\" = z, the paper's 𝔷X taken literally."
         }
         "weights.w3" => "w3 · OF1_3 (Step 3): A2U link length off its band near d_s, per metre.",
         "weights.w4" => "w4 · OF1_4 (Step 3): A2A link length off its band near d_s, per metre.",

@@ -13,7 +13,7 @@ use super::Step1;
 use crate::conic::Triplets;
 use crate::linearise::{floor_sample, segment_intervals, usv_away};
 use crate::planner::PlanError;
-use crate::scenario::UsvObjective;
+use crate::scenario::{DepthObjective, UsvObjective};
 use crate::trajectory::Trajectory;
 use clarabel::solver::SupportedConeT::{self, NonnegativeConeT, SecondOrderConeT, ZeroConeT};
 
@@ -66,7 +66,16 @@ impl Step1<'_> {
                 }
             }
             for k in 1..=kk {
-                m.q[l.auv_p(n, k) + 2] = w.w2; // OF1_2: Σ z
+                let p = l.auv_p(n, k);
+                m.q[p + 2] = w.w2; // OF1_2: Σ z …
+                if s.weights.of1_2 == DepthObjective::Height {
+                    // … − Z(x, y), linearised about the reference: height above the floor
+                    let x = r.auv_p[n][k];
+                    let (zr, grad) = self.floor_linearisation(x);
+                    m.q[p] = -w.w2 * grad[0];
+                    m.q[p + 1] = -w.w2 * grad[1];
+                    m.constant -= w.w2 * (zr - grad[0] * x[0] - grad[1] * x[1]);
+                }
                 m.q[l.floor_slack(n, k)] = penalty;
                 m.q[l.heading_slack(n, k)] = penalty * dt; // m/s → m over one step
             }
@@ -82,7 +91,7 @@ impl Step1<'_> {
                     m.p.push(pk + i, pk + i, 0.0);
                     m.q[pk + i] = w.w8 * grad[i];
                 }
-                m.constant = w.w8 * (value - grad[0] * d_ref[0] - grad[1] * d_ref[1])
+                m.constant += w.w8 * (value - grad[0] * d_ref[0] - grad[1] * d_ref[1])
                     - w.w8 * (grad[0] * p0[0] + grad[1] * p0[1]);
             }
             UsvObjective::Destination => {
@@ -92,7 +101,7 @@ impl Step1<'_> {
                     m.p.push(pk + i, pk + i, 2.0 * w.w8_2);
                     m.q[pk + i] = -2.0 * w.w8_2 * dest[i];
                 }
-                m.constant = w.w8_2 * (dest[0] * dest[0] + dest[1] * dest[1]);
+                m.constant += w.w8_2 * (dest[0] * dest[0] + dest[1] * dest[1]);
             }
         }
 

@@ -21,7 +21,7 @@ pub use layout::Layout;
 use crate::conic::{ConicSolution, ConicSolver, Pattern};
 use crate::linearise::{segment_intervals, usv_away, Heading};
 use crate::planner::PlanError;
-use crate::scenario::{Scenario, UsvObjective};
+use crate::scenario::{DepthObjective, Scenario, UsvObjective};
 use crate::scp::{self, Evaluation, ScpOutcome, ScpProblem};
 use crate::seafloor::Seafloor;
 use crate::trajectory::{Start, Trajectory};
@@ -44,7 +44,10 @@ pub struct Step1<'a> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Terms {
     pub energy: f64,
+    /// Σ z.
     pub depth: f64,
+    /// Σ (z − Z(x, y)).
+    pub height: f64,
     pub usv: f64,
 }
 
@@ -112,6 +115,12 @@ impl<'a> Step1<'a> {
             .flat_map(|p| p[1..].iter())
             .map(|p| p[2])
             .sum();
+        let height = t
+            .auv_p
+            .iter()
+            .flat_map(|p| p[1..].iter())
+            .map(|p| p[2] - self.floor_linearisation(*p).0)
+            .sum();
         let pk = t.usv_p[self.layout.k];
         let usv = match self.scenario.usv.objective {
             UsvObjective::Away => {
@@ -122,7 +131,7 @@ impl<'a> Step1<'a> {
                 (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
             }
         };
-        Terms { energy, depth, usv }
+        Terms { energy, depth, height, usv }
     }
 
     /// Weighted objective J of P2.
@@ -132,7 +141,11 @@ impl<'a> Step1<'a> {
             UsvObjective::Away => -w.w8 * t.usv,
             UsvObjective::Destination => w.w8_2 * t.usv,
         };
-        w.w1 * t.energy + w.w2 * t.depth + usv
+        let of1_2 = match w.of1_2 {
+            DepthObjective::Height => t.height,
+            DepthObjective::Depth => t.depth,
+        };
+        w.w1 * t.energy + w.w2 * of1_2 + usv
     }
 
     /// Worst floor-clearance violation (metres) of the segment k−1 → k of AUV n, sampled by the
@@ -174,6 +187,14 @@ impl<'a> Step1<'a> {
                 0.0
             },
         )
+    }
+
+    /// Z and ∇Z at the horizontal position of p, clamped into the grid (a first guess may
+    /// coast past its edge; the grid bounds bring every later iterate back inside).
+    pub(crate) fn floor_linearisation(&self, p: [f64; 3]) -> (f64, [f64; 2]) {
+        let e = self.floor.extent();
+        let (x, y) = (p[0].clamp(e.x_min, e.x_max), p[1].clamp(e.y_min, e.y_max));
+        self.floor.elevation_and_gradient(x, y).unwrap_or((0.0, [0.0; 2]))
     }
 
     /// Extract the trajectory (and Σν_f, Σν_h) from the solver's x.
@@ -252,30 +273,10 @@ impl ScpProblem for Step1<'_> {
                 iterations: sol.iterations,
             });
         }
-        let (t, nf, nh) = self.extract(&sol.x);
-        // model merit: convex terms exact, OF1_8 linearised, slacks penalised
-        let terms = self.terms(&t);
-        let w = &self.scenario.weights;
-        let usv_model = match self.scenario.usv.objective {
-            UsvObjective::Away => {
-                let p0 = self.start.usv;
-                let d_ref = [
-                    reference.usv_p[self.layout.k][0] - p0[0],
-                    reference.usv_p[self.layout.k][1] - p0[1],
-                ];
-                let d = [
-                    t.usv_p[self.layout.k][0] - p0[0],
-                    t.usv_p[self.layout.k][1] - p0[1],
-                ];
-                let (v, g) = usv_away(d_ref);
-                w.w8 * (v + g[0] * (d[0] - d_ref[0]) + g[1] * (d[1] - d_ref[1]))
-            }
-            UsvObjective::Destination => w.w8_2 * terms.usv,
-        };
-        let model = w.w1 * terms.energy
-            + w.w2 * terms.depth
-            + usv_model
-            + penalty * (nf + self.scenario.horizon.dt * nh);
+        let (t, _, _) = self.extract(&sol.x);
+        // model merit L(x*) = ½x*ᵀPx* + qᵀx* + constant: the convex terms exact, OF1_8 and the
+        // height term linearised, the slacks penalised
+        let model = sol.objective + m.constant;
         Ok((t, model, sol))
     }
 

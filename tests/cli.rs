@@ -1,0 +1,149 @@
+//! End-to-end tests: plan with the library and the `shoal` binary, then verify with the
+//! independent checker.
+
+use shoal::planner::{plan, scenario_floor, PlanError, PlanInput};
+use shoal::scenario::{self, Scenario};
+use std::path::Path;
+use std::process::Command;
+
+/// A small scenario that still exercises every constraint family: 2 AUVs, 8 steps, 2 windows.
+fn small(seed: u64) -> Scenario {
+    scenario::default_with(&[
+        format!("seed={seed}"),
+        "team.auvs=2".into(),
+        "horizon.steps=8".into(),
+        "windows=2".into(),
+    ])
+    .expect("valid overrides")
+}
+
+fn plan_and_check(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
+    let (floor, source) = scenario_floor(s, Path::new("")).expect("floor");
+    let input = PlanInput {
+        scenario: s,
+        floor: &floor,
+        scenario_source: "test".into(),
+        overrides: vec![],
+        seafloor_source: source,
+    };
+    let p = plan(&input)?;
+    let report = shoal::check::check_plan(&p, &floor);
+    assert!(report.passed(), "plan fails its check:\n{}", report.table());
+    Ok(p)
+}
+
+#[test]
+fn small_plans_over_several_seeds_pass_the_independent_check() {
+    for seed in [1, 2, 3] {
+        let p = plan_and_check(&small(seed)).expect("plan");
+        assert_eq!(p.windows.len(), 2);
+        // windows chain: window 1 starts where window 0 ended
+        let a = &p.windows[0].step1.auvs[0];
+        let b = &p.windows[1].step1.auvs[0];
+        assert_eq!(a.position.last(), b.position.first());
+    }
+}
+
+#[test]
+fn destination_objective_moves_the_usv_towards_the_destination() {
+    let mut s = small(4);
+    s.usv.objective = scenario::UsvObjective::Destination;
+    s.usv.destination = [-2000.0, 500.0];
+    let p = plan_and_check(&s).expect("plan");
+    let end = *p.windows[1].step1.usv.position.last().unwrap();
+    let d0 = (2000f64).hypot(500.0);
+    let d1 = (end[0] + 2000.0).hypot(end[1] - 500.0);
+    assert!(d1 < d0 - 100.0, "USV did not approach: {d0} → {d1}");
+}
+
+#[test]
+fn an_initial_auv_beyond_sonar_range_is_refused_naming_c1_6() {
+    let mut s = small(1);
+    s.windows = 1;
+    s.initial = Some(scenario::Initial {
+        usv: [0.0, 0.0],
+        auvs: vec![[10.0, 0.0, -40.0], [0.0, 400.0, -40.0]],
+    });
+    let (floor, source) = scenario_floor(&s, Path::new("")).unwrap();
+    let input = PlanInput {
+        scenario: &s,
+        floor: &floor,
+        scenario_source: "test".into(),
+        overrides: vec![],
+        seafloor_source: source,
+    };
+    let err = plan(&input).unwrap_err();
+    let msg = err.to_string();
+    assert!(matches!(err, PlanError::InvalidStart { .. }), "{msg}");
+    assert!(msg.contains("AUV 1") && msg.contains("C1_6"), "{msg}");
+}
+
+#[test]
+fn unstable_euler_is_refused_with_the_reason() {
+    let s = scenario::default_with(&["auv.discretisation=euler".into()]).unwrap();
+    let (floor, source) = scenario_floor(&s, Path::new("")).unwrap();
+    let input = PlanInput {
+        scenario: &s,
+        floor: &floor,
+        scenario_source: "test".into(),
+        overrides: vec![],
+        seafloor_source: source,
+    };
+    let msg = plan(&input).unwrap_err().to_string();
+    assert!(msg.contains("unstable") && msg.contains("zoh"), "{msg}");
+}
+
+fn shoal() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_shoal"))
+}
+
+#[test]
+fn cli_plans_writes_outputs_and_check_passes() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let st = shoal()
+        .args(["plan", "--set", "team.auvs=2", "--set", "horizon.steps=6", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+    for f in ["plan.json", "usv.csv", "auv0.csv", "auv1.csv"] {
+        assert!(out.join(f).exists(), "{f} missing");
+    }
+    let st = shoal().arg("check").arg(out.join("plan.json")).output().unwrap();
+    let text = String::from_utf8_lossy(&st.stdout);
+    assert!(st.status.success(), "{text}");
+    // the plan echoes the resolved scenario with its seed
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("plan.json")).unwrap()).unwrap();
+    assert_eq!(json["format"], "shoal-plan/1");
+    assert_eq!(json["scenario"]["seed"], 1);
+    assert_eq!(json["scenario"]["team"]["auvs"], 2);
+}
+
+#[test]
+fn cli_init_writes_a_scenario_that_plans_and_bad_keys_name_file_line_and_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("mission.toml");
+    assert!(shoal().arg("init").arg(&f).status().unwrap().success());
+    let text = std::fs::read_to_string(&f).unwrap();
+    assert_eq!(scenario::from_toml_str(&text, "x", &[]).unwrap(), Scenario::default());
+    std::fs::write(&f, "seed = 1\n[acoustic]\nsonar_range = -5\n").unwrap();
+    let st = shoal().arg("plan").arg(&f).output().unwrap();
+    let err = String::from_utf8_lossy(&st.stderr);
+    assert_eq!(st.status.code(), Some(2));
+    assert!(err.contains("mission.toml") && err.contains("line 3"), "{err}");
+    assert!(err.contains("acoustic.sonar_range"), "{err}");
+}
+
+#[test]
+fn cli_seafloor_export_round_trips_through_the_ascii_reader() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("floor.asc");
+    let st = shoal().args(["seafloor", "export", "-o"]).arg(&f).output().unwrap();
+    assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+    let read = shoal::seafloor::Seafloor::read_esri_ascii(&f).unwrap();
+    let s = Scenario::default();
+    let made = shoal::seafloor::Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();
+    assert_eq!(read.fingerprint(), made.fingerprint());
+}
