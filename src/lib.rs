@@ -21,3 +21,4 @@ pub mod planner;
 pub mod step1;
 pub mod trajectory;
 pub mod output;
+pub mod check;
