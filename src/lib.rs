@@ -14,6 +14,7 @@
 // coefficients) with one loop variable; iterator chains would obscure the maths.
 #![allow(clippy::needless_range_loop)]
 
+pub mod check;
 pub mod conic;
 pub mod linearise;
 pub mod output;

@@ -102,15 +102,30 @@ fn cli_plans_writes_outputs_and_check_passes() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let st = shoal()
-        .args(["plan", "--set", "team.auvs=2", "--set", "horizon.steps=6", "-o"])
+        .args([
+            "plan",
+            "--set",
+            "team.auvs=2",
+            "--set",
+            "horizon.steps=6",
+            "-o",
+        ])
         .arg(&out)
         .output()
         .unwrap();
-    assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
     for f in ["plan.json", "usv.csv", "auv0.csv", "auv1.csv"] {
         assert!(out.join(f).exists(), "{f} missing");
     }
-    let st = shoal().arg("check").arg(out.join("plan.json")).output().unwrap();
+    let st = shoal()
+        .arg("check")
+        .arg(out.join("plan.json"))
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&st.stdout);
     assert!(st.status.success(), "{text}");
     // the plan echoes the resolved scenario with its seed
@@ -127,12 +142,18 @@ fn cli_init_writes_a_scenario_that_plans_and_bad_keys_name_file_line_and_key() {
     let f = dir.path().join("mission.toml");
     assert!(shoal().arg("init").arg(&f).status().unwrap().success());
     let text = std::fs::read_to_string(&f).unwrap();
-    assert_eq!(scenario::from_toml_str(&text, "x", &[]).unwrap(), Scenario::default());
+    assert_eq!(
+        scenario::from_toml_str(&text, "x", &[]).unwrap(),
+        Scenario::default()
+    );
     std::fs::write(&f, "seed = 1\n[acoustic]\nsonar_range = -5\n").unwrap();
     let st = shoal().arg("plan").arg(&f).output().unwrap();
     let err = String::from_utf8_lossy(&st.stderr);
     assert_eq!(st.status.code(), Some(2));
-    assert!(err.contains("mission.toml") && err.contains("line 3"), "{err}");
+    assert!(
+        err.contains("mission.toml") && err.contains("line 3"),
+        "{err}"
+    );
     assert!(err.contains("acoustic.sonar_range"), "{err}");
 }
 
@@ -140,8 +161,16 @@ fn cli_init_writes_a_scenario_that_plans_and_bad_keys_name_file_line_and_key() {
 fn cli_seafloor_export_round_trips_through_the_ascii_reader() {
     let dir = tempfile::tempdir().unwrap();
     let f = dir.path().join("floor.asc");
-    let st = shoal().args(["seafloor", "export", "-o"]).arg(&f).output().unwrap();
-    assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+    let st = shoal()
+        .args(["seafloor", "export", "-o"])
+        .arg(&f)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
     let read = shoal::seafloor::Seafloor::read_esri_ascii(&f).unwrap();
     let s = Scenario::default();
     let made = shoal::seafloor::Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();

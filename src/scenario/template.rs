@@ -106,9 +106,7 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              no values; ours are in physical units."
         }
         "weights.w1" => "w1 · OF1_1: input energy Σ‖𝒰[k]‖², per (m/s²)².",
-        "weights.w2" => {
-            "w2 · OF1_2: keeps the AUVs deep, near the floor, per metre (see of1_2)."
-        }
+        "weights.w2" => "w2 · OF1_2: keeps the AUVs deep, near the floor, per metre (see of1_2).",
         "weights.of1_2" => {
             "What OF1_2 sums over AUVs and steps: \"height\" = z − Z(x, y), the height above the \
              floor (ours, default: stays near the floor without pulling AUVs sideways into \

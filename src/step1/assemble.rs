@@ -236,7 +236,9 @@ impl Step1<'_> {
     /// when all of them hold. Every row touches P[k−1] and P[k], so the pattern is fixed.
     fn floor_rows(&self, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
         let l = self.layout;
-        let eps = self.scenario.auv.floor_clearance;
+        // constraint tightening: the model asks for FLOOR_MARGIN more than ε, so the error of the
+        // linearisation cannot leave the true constraint (measured with ε) violated at the end
+        let eps = self.scenario.auv.floor_clearance + FLOOR_MARGIN;
         let res = self.scenario.acoustic.resolution;
         let mut g = Vec::new();
         for n in 0..l.n {
@@ -295,7 +297,7 @@ impl Step1<'_> {
                 let active = a[0].hypot(a[1]) >= vmin;
                 for sign in [1.0, -1.0] {
                     let (da, db) = if active {
-                        let (_, da, db) = self.heading.linearise(sign, a, b);
+                        let (_, da, db) = self.heading_model.linearise(sign, a, b);
                         (da, db)
                     } else {
                         ([0.0; 2], [0.0; 2])
@@ -315,6 +317,9 @@ impl Step1<'_> {
         }
     }
 }
+
+/// Extra clearance (m) the convex model asks for beyond ε (constraint tightening).
+pub(super) const FLOOR_MARGIN: f64 = 0.05;
 
 /// Floor rows per segment (see `floor_rows`).
 pub(super) const FLOOR_ROWS: usize = 6;

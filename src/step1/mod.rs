@@ -28,6 +28,9 @@ use crate::trajectory::{Start, Trajectory};
 use crate::vehicle::{AuvModel, UsvModel};
 use assemble::h2;
 
+/// Turn (rad per step) the convex model keeps below ψ̇_max·δ (constraint tightening).
+const HEADING_MARGIN: f64 = 0.005;
+
 /// P2 for one window.
 pub struct Step1<'a> {
     scenario: &'a Scenario,
@@ -37,6 +40,8 @@ pub struct Step1<'a> {
     start: Start,
     layout: Layout,
     heading: Heading,
+    /// The heading cone of the convex model, tightened by `HEADING_MARGIN`.
+    heading_model: Heading,
     solver: Option<ConicSolver>,
 }
 
@@ -71,6 +76,10 @@ impl<'a> Step1<'a> {
             start,
             layout,
             heading: Heading::new(scenario.auv.max_heading_rate, scenario.horizon.dt),
+            heading_model: Heading::new(
+                (scenario.auv.max_heading_rate - HEADING_MARGIN / scenario.horizon.dt).max(0.0),
+                scenario.horizon.dt,
+            ),
             solver: None,
         }
     }
@@ -131,7 +140,12 @@ impl<'a> Step1<'a> {
                 (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
             }
         };
-        Terms { energy, depth, height, usv }
+        Terms {
+            energy,
+            depth,
+            height,
+            usv,
+        }
     }
 
     /// Weighted objective J of P2.
@@ -194,7 +208,9 @@ impl<'a> Step1<'a> {
     pub(crate) fn floor_linearisation(&self, p: [f64; 3]) -> (f64, [f64; 2]) {
         let e = self.floor.extent();
         let (x, y) = (p[0].clamp(e.x_min, e.x_max), p[1].clamp(e.y_min, e.y_max));
-        self.floor.elevation_and_gradient(x, y).unwrap_or((0.0, [0.0; 2]))
+        self.floor
+            .elevation_and_gradient(x, y)
+            .unwrap_or((0.0, [0.0; 2]))
     }
 
     /// Extract the trajectory (and Σν_f, Σν_h) from the solver's x.

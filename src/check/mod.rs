@@ -1,0 +1,363 @@
+//! Independent verification of a plan (`shoal check plan.json`).
+//!
+//! Every constraint of the plan is re-evaluated from the plan file and the seafloor alone. The
+//! checker shares no code with the optimiser's constraint builders (`step1`, `linearise`, `scp`,
+//! `conic`, `vehicle`): it has its own AUV model ([`model`], RK4 on the continuous dynamics or
+//! eq. (8) literally), its own geometry, its own objective. It uses only the plan data types
+//! ([`crate::plan`]), the scenario parameters recorded in the plan, and the floor's
+//! elevation queries ([`crate::seafloor`]).
+//!
+//! # Families and margins
+//!
+//! Constraints are grouped in families (see [`CheckReport::table`]). Every individual check gives
+//! a *margin*: how far inside the constraint the plan is, in the constraint's unit (positive =
+//! satisfied with room, negative = violated by that much). Equalities (dynamics, chaining,
+//! recorded values) have margin −|error|. A family passes when its worst margin is
+//! ≥ −tolerance. A check that cannot be evaluated (non-finite number, point outside the grid)
+//! counts as margin −∞, so it fails its family. Array entries that are missing (a truncated
+//! plan) are a "structure" failure and skipped by the other families.
+//!
+//! # Tolerances
+//!
+//! | family | tolerance | why |
+//! |---|---|---|
+//! | structure, seafloor identity, obstacles | 0 | exact facts |
+//! | C1_1 AUV dynamics, position | [`DYNAMICS_POSITION_TOL`] = 1e-6 m | see constant |
+//! | C1_1 AUV dynamics, velocity | [`DYNAMICS_VELOCITY_TOL`] = 1e-8 m/s | δ·1e-8 m/s = 1e-6 m at δ = 100 s |
+//! | eq. (9) USV dynamics | [`DYNAMICS_POSITION_TOL`] | |
+//! | model record | [`MODEL_REL_TOL`] = 1e-9 relative | |
+//! | speeds (USV, C1_7) | [`SPEED_TOL`] = 1e-6 m/s | convex (cone) constraints |
+//! | C1_4 underwater, C1_5/C1_6 ranges | [`LENGTH_TOL`] = 1e-6 m | convex constraints |
+//! | C2_2 floor clearance, grid | [`FLOOR_TOL`] = 1e-3 m, 0 m for the grid | nonconvex (SCP) |
+//! | C1_14 heading rate | [`HEADING_TURN_TOL`]/δ (1e-3 rad of turn per step) | nonconvex (SCP) |
+//! | recorded surge speed / heading | [`DERIVED_TOL`] = 1e-9 (m/s, rad) | pure arithmetic |
+//! | window chain | [`CHAIN_TOL`] = 1e-9 (m, m/s) | a copy |
+//! | objective | [`OBJECTIVE_REL_TOL`] = 1e-6 relative | |
+
+pub mod model;
+mod run;
+
+use crate::plan::{ObjectiveTerms, Plan};
+use crate::seafloor::{Seafloor, SeafloorError};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// C1_1 / eq. (9): largest ‖P[k+1] − model(P[k], V[k], U[k])‖ accepted, metres. A planner that
+/// rolls its inputs through the model, or an interior-point solver at its default accuracy on
+/// kilometre-scale coordinates, lands orders of magnitude below this; the checker's RK4
+/// propagator is good to ≈ 1e-9 relative (see [`model`]). 1 µm is far below any physical
+/// meaning, so a larger error is a genuinely inconsistent plan (tampered inputs, wrong model,
+/// wrong δ).
+pub const DYNAMICS_POSITION_TOL: f64 = 1e-6;
+/// C1_1: largest ‖V[k+1] − model(V[k], U[k])‖ accepted, m/s; over a step of δ = 100 s it moves
+/// the next position by at most 1e-6 m, i.e. it matches [`DYNAMICS_POSITION_TOL`].
+pub const DYNAMICS_VELOCITY_TOL: f64 = 1e-8;
+/// Recorded damping rates, time step, speed limit and discrete coefficients against the
+/// checker's own, relative. They are computed by closed formulas (here: by RK4 with ≈ 1e-12
+/// relative error), so anything above 1e-9 is a different model.
+pub const MODEL_REL_TOL: f64 = 1e-9;
+/// Speed limits (‖U_USV‖ ≤ usv.max_speed, C1_7 ‖V_n‖ ≤ auv.max_speed), m/s. These are second-
+/// order cone constraints that the convex solver meets to ≈ 1e-8 of the variable scale
+/// (≈ 1 m/s); 1e-6 m/s leaves two orders of margin and is physically nothing.
+pub const SPEED_TOL: f64 = 1e-6;
+/// Lengths of convex constraints (C1_4 depth below the surface, C1_5 / C1_6 ranges), metres.
+/// Same reasoning as [`SPEED_TOL`] on coordinates of ≈ 100 m: 1e-6 m.
+pub const LENGTH_TOL: f64 = 1e-6;
+/// C2_2 floor clearance, metres. The clearance is nonconvex (bilinear floor); the plan is the
+/// output of an iterative sequential-convex solve, which stops when the true violation is
+/// below its feasibility tolerance (scp.feasibility_tol, default 1e-3). One millimetre against
+/// a clearance of metres is negligible; a plan made with a looser scp.feasibility_tol can fail.
+pub const FLOOR_TOL: f64 = 1e-3;
+/// C1_14 heading rate: largest turn between consecutive samples beyond ψ̇_max·δ accepted,
+/// radians per step (reported as a rate: tolerance HEADING_TURN_TOL/δ rad/s, 1e-5 rad/s at
+/// δ = 100 s). Nonconvex like the floor, hence the same 1e-3 as the SCP's default feasibility
+/// tolerance (which the planner applies to this turn angle); 1 mrad is 0.06°.
+pub const HEADING_TURN_TOL: f64 = 1e-3;
+/// Recorded surge speed (m/s) and heading (rad) against atan2/hypot of the recorded velocity:
+/// the same floating-point formula, so only rounding (≈ 1e-16) separates honest values.
+pub const DERIVED_TOL: f64 = 1e-9;
+/// Window chaining (start of window w+1 = end of window w, window 0 = plan.initial), m and m/s:
+/// the planner copies the state, so honest plans match exactly.
+pub const CHAIN_TOL: f64 = 1e-9;
+/// Objective terms recomputed against the stored ones, relative to the term's magnitude (the
+/// weighted total: relative to the sum of the weighted terms' magnitudes). Summation order
+/// alone changes them by ≈ 1e-14.
+pub const OBJECTIVE_REL_TOL: f64 = 1e-6;
+
+/// The result of one constraint family.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FamilyResult {
+    /// E.g. "C1_7 AUV speed".
+    pub name: &'static str,
+    /// Smallest margin over every check of the family, in `unit` (+∞ when nothing was checked,
+    /// −∞ when a check could not be evaluated).
+    pub worst_margin: f64,
+    pub unit: &'static str,
+    /// The family passes when worst_margin ≥ −tolerance.
+    pub tolerance: f64,
+    /// Where the worst margin occurs: window, step, vehicle (and what was wrong).
+    pub where_: String,
+    /// Number of individual checks.
+    pub checked: usize,
+}
+
+impl FamilyResult {
+    pub fn passed(&self) -> bool {
+        self.worst_margin >= -self.tolerance
+    }
+}
+
+/// The objective terms of one window: as stored in the plan and as recomputed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectiveCheck {
+    pub window: usize,
+    pub stored: ObjectiveTerms,
+    pub recomputed: ObjectiveTerms,
+}
+
+/// Everything the checker found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CheckReport {
+    pub families: Vec<FamilyResult>,
+    /// Every structural problem found (the "structure" family shows the first).
+    pub problems: Vec<String>,
+    /// Per window: stored and recomputed objective terms.
+    pub objectives: Vec<ObjectiveCheck>,
+    /// The fingerprint recorded in the plan and that of the floor checked against.
+    pub plan_fingerprint: String,
+    pub floor_fingerprint: String,
+}
+
+impl CheckReport {
+    /// True when every family passes.
+    pub fn passed(&self) -> bool {
+        self.families.iter().all(FamilyResult::passed)
+    }
+
+    /// The families that fail.
+    pub fn failures(&self) -> Vec<&FamilyResult> {
+        self.families.iter().filter(|f| !f.passed()).collect()
+    }
+
+    /// The family named `name`, if any.
+    pub fn family(&self, name: &str) -> Option<&FamilyResult> {
+        self.families.iter().find(|f| f.name == name)
+    }
+
+    /// An aligned text table: family, checks, worst margin, unit, tolerance, where, PASS/FAIL;
+    /// then the objective terms, stored beside recomputed, and a verdict line.
+    pub fn table(&self) -> String {
+        let head = [
+            "family",
+            "checks",
+            "worst margin",
+            "unit",
+            "tolerance",
+            "result",
+            "where (worst)",
+        ];
+        let rows: Vec<[String; 7]> = self
+            .families
+            .iter()
+            .map(|f| {
+                [
+                    f.name.to_string(),
+                    f.checked.to_string(),
+                    if f.checked == 0 {
+                        "-".into()
+                    } else {
+                        fmt_num(f.worst_margin)
+                    },
+                    f.unit.to_string(),
+                    fmt_num(f.tolerance),
+                    if f.passed() { "PASS" } else { "FAIL" }.into(),
+                    f.where_.clone(),
+                ]
+            })
+            .collect();
+        let mut width = head.map(|h| h.chars().count());
+        for r in &rows {
+            for (w, c) in width.iter_mut().zip(r) {
+                *w = (*w).max(c.chars().count());
+            }
+        }
+        let mut out = String::new();
+        let line = |out: &mut String, cells: &[String]| {
+            let mut s = String::new();
+            for (i, c) in cells.iter().enumerate() {
+                let pad = width[i].saturating_sub(c.chars().count());
+                if i + 1 == cells.len() {
+                    s.push_str(c);
+                } else if i == 1 || i == 2 || i == 4 {
+                    s.push_str(&" ".repeat(pad));
+                    s.push_str(c);
+                    s.push_str("  ");
+                } else {
+                    s.push_str(c);
+                    s.push_str(&" ".repeat(pad + 2));
+                }
+            }
+            out.push_str(s.trim_end());
+            out.push('\n');
+        };
+        line(&mut out, &head.map(String::from));
+        line(&mut out, &width.map(|w| "-".repeat(w)));
+        for r in &rows {
+            line(&mut out, r);
+        }
+        if !self.objectives.is_empty() {
+            out.push('\n');
+            let _ = writeln!(
+                out,
+                "{:<8} {:<7} {:>22} {:>22} {:>10}",
+                "window", "term", "stored", "recomputed", "rel. diff"
+            );
+            for o in &self.objectives {
+                for (term, a, b) in [
+                    ("energy", o.stored.energy, o.recomputed.energy),
+                    ("depth", o.stored.depth, o.recomputed.depth),
+                    ("usv", o.stored.usv, o.recomputed.usv),
+                    ("total", o.stored.total, o.recomputed.total),
+                ] {
+                    let rel = (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
+                    let _ = writeln!(
+                        out,
+                        "{:<8} {:<7} {:>22} {:>22} {:>10.1e}",
+                        o.window,
+                        term,
+                        format!("{a:.12e}"),
+                        format!("{b:.12e}"),
+                        if a == b { 0.0 } else { rel }
+                    );
+                }
+            }
+        }
+        if self.problems.len() > 1 {
+            out.push('\n');
+            let _ = writeln!(out, "structure problems ({}):", self.problems.len());
+            for p in self.problems.iter().take(20) {
+                let _ = writeln!(out, "  {p}");
+            }
+            if self.problems.len() > 20 {
+                let _ = writeln!(out, "  … and {} more", self.problems.len() - 20);
+            }
+        }
+        out.push('\n');
+        let failures = self.failures();
+        if failures.is_empty() {
+            let _ = writeln!(
+                out,
+                "PASS: every constraint family holds within its tolerance"
+            );
+        } else {
+            let names: Vec<&str> = failures.iter().map(|f| f.name).collect();
+            let _ = writeln!(
+                out,
+                "FAIL: {} famil{} violated: {}",
+                names.len(),
+                if names.len() == 1 { "y" } else { "ies" },
+                names.join(", ")
+            );
+        }
+        out
+    }
+}
+
+/// Compact number: scientific for very small or large magnitudes.
+fn fmt_num(v: f64) -> String {
+    if v.is_infinite() || v.is_nan() {
+        format!("{v}")
+    } else if v == 0.0 {
+        "0".into()
+    } else if v.abs() < 1e-3 || v.abs() >= 1e6 {
+        format!("{v:.3e}")
+    } else {
+        format!("{v:.6}")
+    }
+}
+
+/// Errors of loading the floor a plan names.
+#[derive(Debug, Error)]
+pub enum CheckError {
+    #[error("cannot read the seafloor {path}: {source}")]
+    ReadFloor {
+        path: PathBuf,
+        #[source]
+        source: SeafloorError,
+    },
+    #[error(
+        "cannot regenerate the synthetic seafloor (seed {seed}) from the plan's scenario: {source}"
+    )]
+    Synthetic {
+        seed: u64,
+        #[source]
+        source: SeafloorError,
+    },
+    #[error(
+        "the plan's seafloor source is \"file\" but it records no path; give the floor explicitly"
+    )]
+    NoFloorPath,
+    #[error("the plan's seafloor source \"{0}\" is neither \"synthetic\" nor \"file\"")]
+    UnknownSource(String),
+    #[error(
+        "this is not the floor the plan was made on: {origin} has fingerprint {found}, the plan \
+         records {expected}"
+    )]
+    FingerprintMismatch {
+        /// Where the floor came from (path or "the synthetic floor (seed …)").
+        origin: String,
+        expected: String,
+        found: String,
+    },
+}
+
+/// Load the floor the plan names: regenerate the synthetic one from
+/// `plan.scenario.seafloor.synthetic` and `plan.scenario.seed`, or read `plan.seafloor.path`
+/// (relative paths resolve against the current directory, as the planner recorded them);
+/// `override_path` (an ESRI ASCII grid) replaces it. The floor must have the fingerprint the
+/// plan records, otherwise [`CheckError::FingerprintMismatch`].
+pub fn load_floor(plan: &Plan, override_path: Option<&Path>) -> Result<Seafloor, CheckError> {
+    let read = |path: &Path| {
+        Seafloor::read_esri_ascii(path).map_err(|source| CheckError::ReadFloor {
+            path: path.to_path_buf(),
+            source,
+        })
+    };
+    let (floor, origin) = match override_path {
+        Some(path) => (read(path)?, path.display().to_string()),
+        None => match plan.seafloor.source.as_str() {
+            "file" => {
+                let path = plan
+                    .seafloor
+                    .path
+                    .as_deref()
+                    .or(plan.scenario.seafloor.file.as_deref())
+                    .ok_or(CheckError::NoFloorPath)?;
+                (read(Path::new(path))?, path.to_string())
+            }
+            "synthetic" => {
+                let seed = plan.scenario.seed;
+                let floor = Seafloor::synthetic(&plan.scenario.seafloor.synthetic, seed)
+                    .map_err(|source| CheckError::Synthetic { seed, source })?;
+                (floor, format!("the synthetic floor (seed {seed})"))
+            }
+            other => return Err(CheckError::UnknownSource(other.to_string())),
+        },
+    };
+    let found = floor.fingerprint();
+    if found != plan.seafloor.fingerprint {
+        return Err(CheckError::FingerprintMismatch {
+            origin,
+            expected: plan.seafloor.fingerprint.clone(),
+            found,
+        });
+    }
+    Ok(floor)
+}
+
+/// Check every constraint of `plan` against `floor`. Never panics: malformed plans give a
+/// "structure" failure (and −∞ margins where a check cannot be evaluated).
+pub fn check_plan(plan: &Plan, floor: &Seafloor) -> CheckReport {
+    run::run(plan, floor)
+}
