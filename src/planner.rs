@@ -92,7 +92,7 @@ pub fn check_start(
             ));
         }
         let z = floor.elevation(p[0], p[1])?;
-        if p[2] < z + s.auv.floor_clearance - 1e-6 {
+        if p[2] < z + s.auv.floor_clearance - s.scp.feasibility_tol {
             return bad(format!(
                 "AUV {n} at z = {:.2} m is less than ε = {} m above the floor (z = {z:.2} m) (C2_2)",
                 p[2], s.auv.floor_clearance

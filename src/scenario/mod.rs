@@ -294,7 +294,7 @@ impl Default for Usv {
 impl Default for Weights {
     fn default() -> Self {
         // The paper gives no weights. These are in physical units and chosen so that every term
-        // of P2 visibly matters; see docs/weights.md for the sweep behind them.
+        // of P2 visibly matters (docs/method.md, "Weights"; the full sweep is still to do).
         Weights {
             w1: 1.0e3,
             w2: 1.0,

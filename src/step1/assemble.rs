@@ -322,7 +322,7 @@ impl Step1<'_> {
 pub(super) const FLOOR_MARGIN: f64 = 0.05;
 
 /// Floor rows per segment (see `floor_rows`).
-pub(super) const FLOOR_ROWS: usize = 6;
+pub(super) const FLOOR_ROWS: usize = 12;
 
 /// Up to `count` sample indices from (g, j) pairs: largest g first, skipping a neighbour (j ± 1)
 /// of one already taken until no other sample is left.
