@@ -557,6 +557,22 @@ fn a_window_chain_gap_fails_the_chain_only() {
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["window chain"]);
     assert!(r.family("window chain").unwrap().where_.contains("USV"));
+
+    // and plan.initial must be the scenario's explicit [initial], if it has one
+    let mut plan = build(&sp, &floor);
+    plan.scenario.initial = Some(shoal::scenario::Initial {
+        usv: sp.usv0,
+        auvs: sp.auv0.clone(),
+    });
+    assert!(check_plan(&plan, &floor).passed());
+    plan.scenario.initial.as_mut().unwrap().auvs[1][2] -= 2.0;
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["window chain"]);
+    assert!(r
+        .family("window chain")
+        .unwrap()
+        .where_
+        .contains("scenario.initial"));
 }
 
 #[test]
@@ -747,6 +763,11 @@ fn truncated_arrays_fail_the_structure_without_panicking() {
 
     let mut p = plan.clone();
     p.scenario.horizon.steps = 0;
+    r(&p);
+
+    // a corrupt K neither overflows nor makes the checker walk a huge range
+    let mut p = plan.clone();
+    p.scenario.horizon.steps = usize::MAX;
     r(&p);
 
     let mut p = plan.clone();
