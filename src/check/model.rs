@@ -143,7 +143,7 @@ impl AuvStep {
         }
     }
 
-    /// (P[k+1], V[k+1]) from (P[k], V[k]) under U[k].
+    /// `(P[k+1], V[k+1])` from `(P[k], V[k])` under `U[k]`.
     pub fn step(&self, p: [f64; 3], v: [f64; 3], u: [f64; 3]) -> ([f64; 3], [f64; 3]) {
         let mut pn = [0.0; 3];
         let mut vn = [0.0; 3];
