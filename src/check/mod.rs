@@ -43,14 +43,14 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
-/// C1_1 / eq. (9): largest ‖P[k+1] − model(P[k], V[k], U[k])‖ accepted, metres. A planner that
-/// rolls its inputs through the model, or an interior-point solver at its default accuracy on
-/// kilometre-scale coordinates, lands orders of magnitude below this; the checker's RK4
-/// propagator is good to ≈ 1e-9 relative (see [`model`]). 1 µm is far below any physical
-/// meaning, so a larger error is a genuinely inconsistent plan (tampered inputs, wrong model,
-/// wrong δ).
+/// C1_1 / eq. (9): largest `‖P[k+1] − model(P[k], V[k], U[k])‖` accepted, metres. The planner's
+/// plans (solver iterates of linear equality constraints) are consistent to ≈ 1e-12 m on
+/// kilometre-scale coordinates, and the checker's RK4 propagator is good to ≈ 1e-12 relative
+/// (see [`model`]). 1 µm is far below any physical meaning, so a larger error is a genuinely
+/// inconsistent plan (tampered inputs, wrong model, wrong δ) or a subproblem solved only to
+/// reduced accuracy.
 pub const DYNAMICS_POSITION_TOL: f64 = 1e-6;
-/// C1_1: largest ‖V[k+1] − model(V[k], U[k])‖ accepted, m/s; over a step of δ = 100 s it moves
+/// C1_1: largest `‖V[k+1] − model(V[k], U[k])‖` accepted, m/s; over a step of δ = 100 s it moves
 /// the next position by at most 1e-6 m, i.e. it matches [`DYNAMICS_POSITION_TOL`].
 pub const DYNAMICS_VELOCITY_TOL: f64 = 1e-8;
 /// Recorded damping rates, time step, speed limit and discrete coefficients against the

@@ -18,13 +18,16 @@
 use crate::scenario::{Auv, Discretisation};
 
 /// RK4 step size bound: e·h ≤ this. The local error of RK4 on v̇ = −e·v is ≈ (e·h)⁵/120 of the
-/// transient, about 1e-12 at 0.01, so the propagator is accurate to ≈ 1e-9 relative even over
-/// several thousand substeps — three orders of magnitude below the dynamics tolerances.
-const MAX_RATE_STEP: f64 = 0.01;
+/// transient, ≈ 3e-16 at 0.002, so truncation is below rounding; the propagator is then good to
+/// ≈ n·1e-16 relative (n substeps, ≈ 2e4 for the default heave axis at δ = 100 s), about 1e-12 —
+/// far below the dynamics tolerances. The propagator is computed once per plan, so the substeps
+/// cost nothing that matters.
+const MAX_RATE_STEP: f64 = 0.002;
 /// Never fewer substeps than this (keeps h small relative to δ for slowly damped axes too).
-const MIN_SUBSTEPS: usize = 200;
-/// Never more (a guard against absurd parameters; reached only when e·δ > 10⁵).
-const MAX_SUBSTEPS: usize = 10_000_000;
+const MIN_SUBSTEPS: usize = 1000;
+/// Never more (a guard against absurd parameters; reached only when e·δ > 2000, where RK4 stays
+/// stable up to e·δ ≈ 2.7e6 but loses the accuracy argued above).
+const MAX_SUBSTEPS: usize = 1_000_000;
 
 /// Damping rates (1/s) computed from the scenario: surge, heave and yaw.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -95,11 +98,12 @@ fn rk4(e: f64, v0: f64, u: f64, dt: f64, n: usize) -> (f64, f64) {
 
 /// Number of RK4 substeps for rate `e` over `dt`.
 pub fn substeps(e: f64, dt: f64) -> usize {
-    let need = (e.abs() * dt / MAX_RATE_STEP).ceil();
+    let need = (e.abs() * dt.abs() / MAX_RATE_STEP).ceil();
     if need.is_finite() {
         (need as usize).clamp(MIN_SUBSTEPS, MAX_SUBSTEPS)
     } else {
-        MAX_SUBSTEPS
+        // e or δ not finite: the result is NaN whatever the count, which fails the checks
+        MIN_SUBSTEPS
     }
 }
 
@@ -139,7 +143,7 @@ impl AuvStep {
         }
     }
 
-    /// (P[k+1], V[k+1]) from (P[k], V[k]) under U[k].
+    /// `(P[k+1], V[k+1])` from `(P[k], V[k])` under `U[k]`.
     pub fn step(&self, p: [f64; 3], v: [f64; 3], u: [f64; 3]) -> ([f64; 3], [f64; 3]) {
         let mut pn = [0.0; 3];
         let mut vn = [0.0; 3];

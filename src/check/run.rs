@@ -257,11 +257,11 @@ impl Checker<'_> {
                 || format!("window {w}: a stored objective term is not finite"),
             );
             let usv = &st.usv;
-            self.require(usv.position.len() == k + 1, || {
+            self.require(usv.position.len() == k.saturating_add(1), || {
                 format!(
                     "window {w}, USV: {} positions, expected K + 1 = {}",
                     usv.position.len(),
-                    k + 1
+                    k.saturating_add(1)
                 )
             });
             self.require(usv.input.len() == k, || {
@@ -278,11 +278,11 @@ impl Checker<'_> {
             });
             for (i, a) in st.auvs.iter().enumerate() {
                 for (what, len, want) in [
-                    ("positions", a.position.len(), k + 1),
-                    ("velocities", a.velocity.len(), k + 1),
+                    ("positions", a.position.len(), k.saturating_add(1)),
+                    ("velocities", a.velocity.len(), k.saturating_add(1)),
                     ("inputs", a.input.len(), k),
-                    ("surge speeds", a.surge_speed.len(), k + 1),
-                    ("headings", a.heading.len(), k + 1),
+                    ("surge speeds", a.surge_speed.len(), k.saturating_add(1)),
+                    ("headings", a.heading.len(), k.saturating_add(1)),
                 ] {
                     self.require(len == want, || {
                         format!("window {w}, AUV {i}: {len} {what}, expected {want}")
@@ -394,7 +394,7 @@ impl Checker<'_> {
         let mut fv = Family::new("C1_1 AUV dynamics (velocity)", "m/s", DYNAMICS_VELOCITY_TOL);
         let mut fu = Family::new("eq. (9) USV dynamics", "m", DYNAMICS_POSITION_TOL);
         for (w, _, n, a) in self.auv_paths() {
-            for k in 0..self.k {
+            for k in 0..self.k.min(a.input.len()) {
                 let (Some(p0), Some(v0), Some(u), Some(p1), Some(v1)) = (
                     a.position.get(k),
                     a.velocity.get(k),
@@ -412,7 +412,7 @@ impl Checker<'_> {
         }
         for (w, win) in self.plan.windows.iter().enumerate() {
             let usv = &win.step1.usv;
-            for k in 0..self.k {
+            for k in 0..self.k.min(usv.input.len()) {
                 let (Some(p0), Some(u), Some(p1)) = (
                     usv.position.get(k),
                     usv.input.get(k),
@@ -441,7 +441,7 @@ impl Checker<'_> {
             }
         }
         for (w, _, n, a) in self.auv_paths() {
-            for (k, v) in a.velocity.iter().enumerate().take(self.k + 1) {
+            for (k, v) in a.velocity.iter().enumerate().take(self.k.saturating_add(1)) {
                 fa.record(self.s.auv.max_speed - norm(v), || {
                     at(w, k, &format!("AUV {n}: ‖V‖ = {}", norm(v)))
                 });
@@ -457,7 +457,7 @@ impl Checker<'_> {
         let mut f = Family::new("C1_4 underwater", "m", LENGTH_TOL);
         let limit = -self.s.auv.surface_clearance;
         for (w, _, n, a) in self.auv_paths() {
-            for (k, p) in a.position.iter().enumerate().take(self.k + 1) {
+            for (k, p) in a.position.iter().enumerate().take(self.k.saturating_add(1)) {
                 f.record(limit - p[2], || at(w, k, &format!("AUV {n}: z = {}", p[2])));
             }
         }
@@ -472,7 +472,7 @@ impl Checker<'_> {
         let mut f6 = Family::new("C1_6 sonar range at k = 0, K", "m", LENGTH_TOL);
         let (d_max, d_s) = (self.s.acoustic.max_range, self.s.acoustic.sonar_range);
         for (w, st, n, a) in self.auv_paths() {
-            for k in 0..=self.k {
+            for k in 0..=self.k.min(a.position.len()) {
                 let (Some(p), Some(q)) = (a.position.get(k), st.usv.position.get(k)) else {
                     continue;
                 };
@@ -500,7 +500,7 @@ impl Checker<'_> {
         let e = self.floor.extent();
         for (w, _, n, a) in self.auv_paths() {
             let who = format!("AUV {n}");
-            for (k, p) in a.position.iter().enumerate().take(self.k + 1) {
+            for (k, p) in a.position.iter().enumerate().take(self.k.saturating_add(1)) {
                 // signed distance inside the extent (f64::min would hide a NaN)
                 let inside = if p[0].is_finite() && p[1].is_finite() {
                     (p[0] - e.x_min)
@@ -520,7 +520,7 @@ impl Checker<'_> {
                     Err(err) => fw.record(f64::NEG_INFINITY, || at(w, k, &format!("{who}: {err}"))),
                 }
             }
-            for k in 1..=self.k {
+            for k in 1..=self.k.min(a.position.len()) {
                 let (Some(pa), Some(pb)) = (a.position.get(k - 1), a.position.get(k)) else {
                     continue;
                 };
@@ -605,7 +605,7 @@ impl Checker<'_> {
         let vmin = self.s.auv.min_heading_speed;
         let max = self.s.auv.max_heading_rate;
         for (w, _, n, a) in self.auv_paths() {
-            for k in 1..=self.k {
+            for k in 1..=self.k.min(a.velocity.len()) {
                 let (Some(va), Some(vb)) = (a.velocity.get(k - 1), a.velocity.get(k)) else {
                     continue;
                 };
@@ -640,7 +640,7 @@ impl Checker<'_> {
         let mut fh = Family::new("recorded heading", "rad", DERIVED_TOL);
         let vmin = self.s.auv.min_heading_speed;
         for (w, _, n, a) in self.auv_paths() {
-            for (k, v) in a.velocity.iter().enumerate().take(self.k + 1) {
+            for (k, v) in a.velocity.iter().enumerate().take(self.k.saturating_add(1)) {
                 let speed = v[0].hypot(v[1]);
                 if let Some(stored) = a.surge_speed.get(k) {
                     fs.record(-(stored - speed).abs(), || {
@@ -685,6 +685,24 @@ impl Checker<'_> {
         let mut f = Family::new("window chain", "m, m/s", CHAIN_TOL);
         let init = &self.plan.initial;
         let k = self.k;
+        // an explicit [initial] of the scenario is where the plan must start, at rest
+        if let Some(given) = &self.s.initial {
+            f.record(-diff(init.usv, given.usv), || {
+                format!(
+                    "plan.initial USV {:?}, scenario.initial {:?}",
+                    init.usv, given.usv
+                )
+            });
+            for (n, p) in given.auvs.iter().enumerate() {
+                let Some(a) = init.auvs.get(n) else { continue };
+                f.record(-diff(a.position, *p).max(norm(&a.velocity)), || {
+                    format!(
+                        "plan.initial AUV {n} at {:?} / {:?}, scenario.initial {p:?} at rest",
+                        a.position, a.velocity
+                    )
+                });
+            }
+        }
         for (w, win) in self.plan.windows.iter().enumerate() {
             let st = &win.step1;
             let prev = w.checked_sub(1).map(|p| &self.plan.windows[p].step1);
@@ -742,7 +760,7 @@ impl Checker<'_> {
             let depth: f64 = st
                 .auvs
                 .iter()
-                .flat_map(|a| a.position.iter().take(self.k + 1).skip(1))
+                .flat_map(|a| a.position.iter().take(self.k.saturating_add(1)).skip(1))
                 .map(|p| p[2])
                 .sum();
             // Σ (z − Z(x, y)); a point off the grid is reported by the floor family already

@@ -1,0 +1,865 @@
+//! The independent checker on hand-built plans: a valid plan passes, and breaking exactly one
+//! constraint fails exactly the family that owns it. Trajectories are rolled out with the
+//! closed-form solution of the continuous AUV model derived here (not the checker's RK4, not
+//! `crate::vehicle`), so the dynamics test also cross-checks the checker's integrator.
+
+use shoal::check::{check_plan, load_floor, CheckError, CheckReport};
+use shoal::plan::{
+    AuvPath, AuvState, InitialState, ModelRecord, ObjectiveTerms, Plan, SeafloorRecord, Stage,
+    UsvPath, Window, FORMAT,
+};
+use shoal::scenario::{Discretisation, Scenario, UsvObjective};
+use shoal::seafloor::Seafloor;
+use shoal::vehicle::{AuvModel, Damping, UsvModel};
+
+// ---------------------------------------------------------------------------------------------
+// Floors
+// ---------------------------------------------------------------------------------------------
+
+/// A square grid of `n × n` nodes, spacing `d`, south-west node at (x0, y0); `f` gives the
+/// elevation of a node (None: NODATA).
+fn grid(x0: f64, y0: f64, d: f64, n: usize, f: impl Fn(f64, f64) -> Option<f64>) -> Seafloor {
+    let mut z = Vec::with_capacity(n * n);
+    let mut nodata = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let v = f(x0 + i as f64 * d, y0 + j as f64 * d);
+            z.push(v.unwrap_or(f64::NAN));
+            nodata.push(v.is_none());
+        }
+    }
+    Seafloor::from_nodes(n, n, x0, y0, d, d, z, nodata).unwrap()
+}
+
+/// Flat floor at −100 m, 5 m cells, covering [−300, 300]².
+fn flat() -> Seafloor {
+    grid(-300.0, -300.0, 5.0, 121, |_, _| Some(-100.0))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Plans
+// ---------------------------------------------------------------------------------------------
+
+/// What a plan is built from: the scenario, the start, and every input of every window.
+#[derive(Clone)]
+struct Spec {
+    s: Scenario,
+    usv0: [f64; 2],
+    auv0: Vec<[f64; 3]>,
+    /// [window][k]
+    usv_u: Vec<Vec<[f64; 2]>>,
+    /// [window][auv][k]
+    auv_u: Vec<Vec<Vec<[f64; 3]>>>,
+}
+
+const K: usize = 4;
+const DT: f64 = 10.0;
+
+fn rates(s: &Scenario) -> [f64; 3] {
+    let a = &s.auv;
+    let surge = -a.damping_surge / (a.mass - a.added_mass_surge);
+    let heave = -a.damping_heave / (a.mass - a.added_mass_heave);
+    [surge, surge, heave]
+}
+
+/// Coefficients (pv, pu, vv, vu) of one axis: closed form of ṗ = v, v̇ = −e v + u over δ with
+/// constant u (ZOH), or eq. (8) (Euler).
+fn coefficients(e: f64, dt: f64, kind: Discretisation) -> (f64, f64, f64, f64) {
+    match kind {
+        Discretisation::Zoh => {
+            let g = -(-e * dt).exp_m1() / e; // (1 − e^{−eδ})/e
+            (g, (dt - g) / e, (-e * dt).exp(), g)
+        }
+        Discretisation::Euler => (dt, 0.0, 1.0 - dt * e, dt),
+    }
+}
+
+/// Two AUVs cruising east at about 1 m/s, 50 and 60 m deep, turning gently left; the USV goes
+/// east at 0.9 m/s. `windows` windows of K = 4 steps of δ = 10 s.
+fn spec(windows: usize) -> Spec {
+    let mut s = Scenario::default();
+    s.team.auvs = 2;
+    s.windows = windows;
+    s.horizon.steps = K;
+    s.horizon.dt = DT;
+    let e = rates(&s)[0];
+    let auv = |w: usize| -> Vec<Vec<[f64; 3]>> {
+        (0..2)
+            .map(|_| {
+                (0..K)
+                    .map(|k| {
+                        let th = 0.01 * (w * K + k) as f64;
+                        [e * th.cos(), e * th.sin(), 0.0] // terminal speed 1 m/s
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    Spec {
+        s,
+        usv0: [0.0, 0.0],
+        auv0: vec![[20.0, 10.0, -50.0], [-20.0, -10.0, -60.0]],
+        usv_u: (0..windows).map(|_| vec![[0.9, 0.0]; K]).collect(),
+        auv_u: (0..windows).map(auv).collect(),
+    }
+}
+
+fn objective(s: &Scenario, usv: &UsvPath, auvs: &[AuvPath]) -> ObjectiveTerms {
+    let energy = auvs
+        .iter()
+        .flat_map(|a| &a.input)
+        .map(|u| u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+        .sum();
+    let depth = auvs
+        .iter()
+        .flat_map(|a| &a.position[1..])
+        .map(|p| p[2])
+        .sum();
+    let (p0, pk) = (usv.position[0], *usv.position.last().unwrap());
+    let (usv_term, w_usv) = match s.usv.objective {
+        UsvObjective::Away => (
+            (pk[0] - p0[0]).powi(2) + (pk[1] - p0[1]).powi(2),
+            -s.weights.w8,
+        ),
+        UsvObjective::Destination => {
+            let d = s.usv.destination;
+            (
+                (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2),
+                s.weights.w8_2,
+            )
+        }
+    };
+    ObjectiveTerms {
+        energy,
+        depth,
+        usv: usv_term,
+        total: s.weights.w1 * energy + s.weights.w2 * depth + w_usv * usv_term,
+    }
+}
+
+fn auv_path(s: &Scenario, p: Vec<[f64; 3]>, v: Vec<[f64; 3]>, u: Vec<[f64; 3]>) -> AuvPath {
+    let vmin = s.auv.min_heading_speed;
+    AuvPath {
+        surge_speed: v.iter().map(|v| v[0].hypot(v[1])).collect(),
+        heading: v
+            .iter()
+            .map(|v| (v[0].hypot(v[1]) >= vmin).then(|| v[1].atan2(v[0])))
+            .collect(),
+        position: p,
+        velocity: v,
+        input: u,
+    }
+}
+
+/// Roll the spec out into a plan on `floor`. `start` may replace the state a window starts
+/// from (to break the chain).
+fn build_with(
+    spec: &Spec,
+    floor: &Seafloor,
+    start: impl Fn(usize, &mut [f64; 2], &mut Vec<AuvState>),
+) -> Plan {
+    let s = &spec.s;
+    let (k, dt) = (s.horizon.steps, s.horizon.dt);
+    let e = rates(s);
+    let co: Vec<_> = e
+        .iter()
+        .map(|&e| coefficients(e, dt, s.auv.discretisation))
+        .collect();
+    let initial = InitialState {
+        origin: "explicit".into(),
+        usv: spec.usv0,
+        auvs: spec
+            .auv0
+            .iter()
+            .map(|p| AuvState {
+                position: *p,
+                velocity: [0.0; 3],
+            })
+            .collect(),
+    };
+    let (mut usv_at, mut auvs_at) = (initial.usv, initial.auvs.clone());
+    let mut windows = Vec::new();
+    for w in 0..s.windows {
+        start(w, &mut usv_at, &mut auvs_at);
+        let mut up = vec![usv_at];
+        for u in &spec.usv_u[w] {
+            let p = *up.last().unwrap();
+            up.push([p[0] + dt * u[0], p[1] + dt * u[1]]);
+        }
+        let usv = UsvPath {
+            position: up,
+            input: spec.usv_u[w].clone(),
+        };
+        let mut auvs = Vec::new();
+        for (n, st) in auvs_at.iter().enumerate() {
+            let (mut p, mut v) = (vec![st.position], vec![st.velocity]);
+            for u in &spec.auv_u[w][n] {
+                let (p0, v0) = (*p.last().unwrap(), *v.last().unwrap());
+                let mut p1 = [0.0; 3];
+                let mut v1 = [0.0; 3];
+                for i in 0..3 {
+                    let (pv, pu, vv, vu) = co[i];
+                    p1[i] = p0[i] + pv * v0[i] + pu * u[i];
+                    v1[i] = vv * v0[i] + vu * u[i];
+                }
+                p.push(p1);
+                v.push(v1);
+            }
+            auvs.push(auv_path(s, p, v, spec.auv_u[w][n].clone()));
+        }
+        usv_at = *usv.position.last().unwrap();
+        auvs_at = auvs
+            .iter()
+            .map(|a| AuvState {
+                position: *a.position.last().unwrap(),
+                velocity: *a.velocity.last().unwrap(),
+            })
+            .collect();
+        windows.push(Window {
+            index: w,
+            start_time: (w * k) as f64 * dt,
+            step1: Stage {
+                status: "converged".into(),
+                iterations: 1,
+                solve_time_s: 0.0,
+                objective: objective(s, &usv, &auvs),
+                max_violation: 0.0,
+                usv,
+                auvs,
+                scp: vec![],
+            },
+        });
+    }
+    let (z_min, z_max) = floor.z_range();
+    let damping = Damping {
+        surge: e[0],
+        heave: e[2],
+        yaw: -s.auv.damping_yaw / (s.auv.inertia_yaw - s.auv.added_inertia_yaw),
+    };
+    let model = ModelRecord {
+        damping,
+        auv: AuvModel {
+            dt,
+            rate: e,
+            pv: std::array::from_fn(|i| co[i].0),
+            pu: std::array::from_fn(|i| co[i].1),
+            vv: std::array::from_fn(|i| co[i].2),
+            vu: std::array::from_fn(|i| co[i].3),
+        },
+        usv: UsvModel {
+            dt,
+            max_speed: s.usv.max_speed,
+        },
+    };
+    Plan {
+        format: FORMAT.into(),
+        shoal_version: "test".into(),
+        scenario_source: "test".into(),
+        overrides: vec![],
+        scenario: s.clone(),
+        seafloor: SeafloorRecord {
+            source: "file".into(),
+            path: None,
+            nx: floor.nx(),
+            ny: floor.ny(),
+            x0: floor.x0(),
+            y0: floor.y0(),
+            dx: floor.dx(),
+            dy: floor.dy(),
+            z_min,
+            z_max,
+            fingerprint: floor.fingerprint(),
+        },
+        model,
+        initial,
+        windows,
+    }
+}
+
+fn build(spec: &Spec, floor: &Seafloor) -> Plan {
+    build_with(spec, floor, |_, _, _| {})
+}
+
+fn failing(r: &CheckReport) -> Vec<&'static str> {
+    r.failures().iter().map(|f| f.name).collect()
+}
+
+/// The check fails exactly `families`, and the table says so.
+#[track_caller]
+fn assert_fails_exactly(r: &CheckReport, families: &[&str]) {
+    assert_eq!(failing(r), families, "\n{}", r.table());
+    assert!(!r.passed());
+    let table = r.table();
+    for f in families {
+        let row = table.lines().find(|l| l.starts_with(f)).unwrap();
+        assert!(row.contains("FAIL"), "{row}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// A valid plan
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn a_valid_plan_passes_every_family() {
+    let floor = flat();
+    let plan = build(&spec(2), &floor);
+    let r = check_plan(&plan, &floor);
+    assert!(r.passed(), "\n{}", r.table());
+    assert!(r.table().contains("PASS: every constraint family holds"));
+    for f in &r.families {
+        assert!(f.checked > 0, "{} checked nothing", f.name);
+    }
+    // heading is checked wherever both speeds are above 0.1 m/s: k = 1→2 … in window 0
+    assert!(r.family("C1_14 heading rate").unwrap().checked >= 2 * (2 * K - 1));
+    // the dynamics agree to rounding, far inside the tolerance
+    let dynamics = r.family("C1_1 AUV dynamics (position)").unwrap();
+    assert!(dynamics.worst_margin > -1e-9, "{dynamics:?}");
+    assert_eq!(r.objectives.len(), 2);
+}
+
+#[test]
+fn a_valid_euler_plan_passes_and_a_zoh_plan_is_not_an_euler_plan() {
+    let floor = flat();
+    let mut sp = spec(1);
+    sp.s.auv.discretisation = Discretisation::Euler;
+    sp.s.horizon.dt = 2.0; // |1 − δ·e_heave| ≤ 1 needs δ ≤ 5 s
+    let plan = build(&sp, &floor);
+    let r = check_plan(&plan, &floor);
+    assert!(r.passed(), "\n{}", r.table());
+
+    // the ZOH plan read as Euler: wrong dynamics and a wrong model record
+    let mut zoh = build(&spec(1), &floor);
+    zoh.scenario.auv.discretisation = Discretisation::Euler;
+    let r = check_plan(&zoh, &floor);
+    assert_fails_exactly(
+        &r,
+        &[
+            "model record",
+            "C1_1 AUV dynamics (position)",
+            "C1_1 AUV dynamics (velocity)",
+        ],
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Breaking one constraint fails one family
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn auv_too_fast_fails_c1_7_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    let e = rates(&sp.s)[0];
+    sp.auv_u[0][0] = vec![[3.0 * e, 0.0, 0.0]; K]; // terminal speed 3 m/s > V_max = 2
+    let plan = build(&sp, &floor);
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["C1_7 AUV speed"]);
+    let f = r.family("C1_7 AUV speed").unwrap();
+    assert!(f.where_.contains("AUV 0"), "{}", f.where_);
+    assert!(f.worst_margin < -0.3);
+}
+
+#[test]
+fn usv_too_fast_fails_usv_speed_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    sp.usv_u[0][2] = [1.6, 0.3]; // > 1.5 m/s
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(&r, &["USV speed"]);
+    assert!(r
+        .family("USV speed")
+        .unwrap()
+        .where_
+        .contains("input k = 2"));
+}
+
+#[test]
+fn auv_near_the_surface_fails_c1_4_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    sp.auv0[1][2] = -1.5; // above −surface_clearance = −2 m
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(&r, &["C1_4 underwater"]);
+    let f = r.family("C1_4 underwater").unwrap();
+    assert!((f.worst_margin + 0.5).abs() < 1e-12, "{f:?}");
+}
+
+#[test]
+fn a_seamount_between_two_good_waypoints_fails_the_segment_check_only() {
+    let sp = {
+        let mut sp = spec(1);
+        sp.s.acoustic.resolution = 1.0;
+        sp
+    };
+    // where AUV 0's segment k = 1 → 2 has its midpoint (the floor does not change the rollout)
+    let probe = build(&sp, &flat());
+    let (a, b) = (
+        probe.windows[0].step1.auvs[0].position[1],
+        probe.windows[0].step1.auvs[0].position[2],
+    );
+    let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+    let half = ((b[0] - a[0]).hypot(b[1] - a[1])) / 2.0;
+    assert!(half > 3.0, "segment too short for the test: {half}");
+    // a grid with a node exactly at the midpoint, raised to −10 m: a 5 m pyramid
+    let d = 5.0;
+    let floor = grid(mid[0] - 60.0 * d, mid[1] - 60.0 * d, d, 121, |x, y| {
+        let at_peak = (x - mid[0]).abs() < 1e-6 && (y - mid[1]).abs() < 1e-6;
+        Some(if at_peak { -10.0 } else { -100.0 })
+    });
+    let plan = build(&sp, &floor);
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["C2_2 floor clearance (segments)"]);
+    let seg = r.family("C2_2 floor clearance (segments)").unwrap();
+    assert!(seg.where_.contains("k = 1→2, AUV 0"), "{}", seg.where_);
+    assert!(seg.worst_margin < -20.0, "{seg:?}");
+    // both waypoints are well clear
+    let wp = r.family("C2_2 floor clearance (waypoints)").unwrap();
+    assert!(wp.worst_margin > 10.0, "{wp:?}");
+}
+
+#[test]
+fn a_waypoint_too_close_to_the_floor_fails_both_clearance_families() {
+    let floor = flat();
+    let mut sp = spec(1);
+    sp.auv0[0][2] = -97.0; // 3 m above the floor, ε = 5 m
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(
+        &r,
+        &[
+            "C2_2 floor clearance (waypoints)",
+            "C2_2 floor clearance (segments)",
+        ],
+    );
+    let f = r.family("C2_2 floor clearance (waypoints)").unwrap();
+    assert!((f.worst_margin + 2.0).abs() < 1e-9, "{f:?}");
+}
+
+#[test]
+fn a_sample_over_nodata_fails_the_obstacle_family_only() {
+    // AUV 0 starts at (20, 10): make the south-west node of its cell, 4.5 m away on both axes,
+    // NODATA. The bilinear floor there is −100·(1 − 0.1·0.1) = −99 m, still far below.
+    let sp = spec(1);
+    let bad = [15.5, 5.5];
+    let floor = grid(15.5 - 60.0 * 5.0, 5.5 - 60.0 * 5.0, 5.0, 121, |x, y| {
+        ((x - bad[0]).abs() > 1e-6 || (y - bad[1]).abs() > 1e-6).then_some(-100.0)
+    });
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(&r, &["no obstacle (NODATA/land)"]);
+    let f = r.family("no obstacle (NODATA/land)").unwrap();
+    assert!(f.where_.contains("k = 0→1, AUV 0"), "{}", f.where_);
+}
+
+#[test]
+fn leaving_the_grid_fails_the_grid_family_without_panicking() {
+    let floor = grid(-300.0, -300.0, 5.0, 121, |_, _| Some(-100.0));
+    let mut sp = spec(1);
+    sp.auv0[0] = [299.0, 10.0, -50.0];
+    sp.usv0 = [290.0, 0.0];
+    let r = check_plan(&build(&sp, &floor), &floor);
+    let failing = failing(&r);
+    assert!(failing.contains(&"inside the seafloor grid"), "{failing:?}");
+    let f = r.family("C2_2 floor clearance (waypoints)").unwrap();
+    assert_eq!(f.worst_margin, f64::NEG_INFINITY);
+    assert!(f.where_.contains("outside"), "{}", f.where_);
+}
+
+#[test]
+fn too_far_from_the_usv_at_k_fails_c1_6_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    // AUV 1 starts 100 m west of the USV and keeps west; the USV runs east at 1.5 m/s
+    sp.auv0[1] = [-100.0, 0.0, -60.0];
+    let e = rates(&sp.s)[0];
+    sp.auv_u[0][1] = vec![[-e, 0.0, 0.0]; K];
+    sp.usv_u[0] = vec![[1.5, 0.0]; K];
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(&r, &["C1_6 sonar range at k = 0, K"]);
+    let f = r.family("C1_6 sonar range at k = 0, K").unwrap();
+    assert!(
+        f.where_.contains(&format!("k = {K}, AUV 1")),
+        "{}",
+        f.where_
+    );
+}
+
+#[test]
+fn beyond_d_max_fails_c1_5_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    sp.s.acoustic.max_range = 40.0; // the AUVs are ≈ 55–60 m from the USV
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(&r, &["C1_5 range ≤ d_max"]);
+}
+
+#[test]
+fn a_sharp_turn_fails_c1_14_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    let e = rates(&sp.s)[0];
+    sp.auv_u[0][0][2] = [0.0, e, 0.0]; // input k = 2 points north while the AUV heads east
+    let plan = build(&sp, &floor);
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["C1_14 heading rate"]);
+    let f = r.family("C1_14 heading rate").unwrap();
+    assert!(f.where_.contains("k = 2→3, AUV 0"), "{}", f.where_);
+    // the rate is recomputed from the velocities, not read from the stored heading
+    let v = &plan.windows[0].step1.auvs[0].velocity;
+    let turn = (v[3][1].atan2(v[3][0]) - v[2][1].atan2(v[2][0])).abs();
+    let want = sp.s.auv.max_heading_rate - turn / DT;
+    assert!(
+        (f.worst_margin - want).abs() < 1e-12,
+        "{} vs {want}",
+        f.worst_margin
+    );
+}
+
+#[test]
+fn the_stored_heading_is_not_trusted() {
+    // A sharp turn with stored headings doctored to look smooth still fails C1_14, and the
+    // doctored field fails its own family.
+    let floor = flat();
+    let mut sp = spec(1);
+    let e = rates(&sp.s)[0];
+    sp.auv_u[0][0][2] = [0.0, e, 0.0];
+    let mut plan = build(&sp, &floor);
+    let a = &mut plan.windows[0].step1.auvs[0];
+    a.heading[3] = a.heading[2];
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["C1_14 heading rate", "recorded heading"]);
+}
+
+#[test]
+fn a_window_chain_gap_fails_the_chain_only() {
+    let floor = flat();
+    let sp = spec(2);
+    let plan = build_with(&sp, &floor, |w, _, auvs| {
+        if w == 1 {
+            auvs[1].position[0] += 1.0; // window 1 starts 1 m east of where window 0 ended
+        }
+    });
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["window chain"]);
+    let f = r.family("window chain").unwrap();
+    assert!(
+        f.where_.starts_with("window 1, k = 0, AUV 1"),
+        "{}",
+        f.where_
+    );
+    assert!((f.worst_margin + 1.0).abs() < 1e-9);
+
+    // and window 0 must start at plan.initial
+    let plan = build_with(&sp, &floor, |w, usv, _| {
+        if w == 0 {
+            usv[1] += 0.5;
+        }
+    });
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["window chain"]);
+    assert!(r.family("window chain").unwrap().where_.contains("USV"));
+
+    // and plan.initial must be the scenario's explicit [initial], if it has one
+    let mut plan = build(&sp, &floor);
+    plan.scenario.initial = Some(shoal::scenario::Initial {
+        usv: sp.usv0,
+        auvs: sp.auv0.clone(),
+    });
+    assert!(check_plan(&plan, &floor).passed());
+    plan.scenario.initial.as_mut().unwrap().auvs[1][2] -= 2.0;
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["window chain"]);
+    assert!(r
+        .family("window chain")
+        .unwrap()
+        .where_
+        .contains("scenario.initial"));
+}
+
+#[test]
+fn a_tampered_input_fails_the_dynamics_only() {
+    let floor = flat();
+    let sp = spec(2);
+    let mut plan = build(&sp, &floor);
+    let st = &mut plan.windows[1].step1;
+    st.auvs[0].input[1][0] += 0.01;
+    // a careful forger also fixes the stored objective
+    st.objective = objective(&plan.scenario, &st.usv, &st.auvs);
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(
+        &r,
+        &[
+            "C1_1 AUV dynamics (position)",
+            "C1_1 AUV dynamics (velocity)",
+        ],
+    );
+    let f = r.family("C1_1 AUV dynamics (velocity)").unwrap();
+    assert!(
+        f.where_.contains("window 1, k = 1→2, AUV 0"),
+        "{}",
+        f.where_
+    );
+
+    // the USV model too
+    let mut plan = build(&sp, &floor);
+    plan.windows[0].step1.usv.input[3][1] += 0.01;
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["eq. (9) USV dynamics"]);
+}
+
+#[test]
+fn a_tampered_objective_fails_the_objective_only() {
+    let floor = flat();
+    let mut plan = build(&spec(1), &floor);
+    plan.windows[0].step1.objective.energy *= 1.001;
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["objective"]);
+    assert!(r.table().contains("energy"));
+}
+
+#[test]
+fn a_tampered_model_record_fails_the_model_family_only() {
+    let floor = flat();
+    let mut plan = build(&spec(1), &floor);
+    plan.model.damping.heave *= 1.01;
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["model record"]);
+}
+
+#[test]
+fn a_tampered_surge_speed_fails_its_family_only() {
+    let floor = flat();
+    let mut plan = build(&spec(1), &floor);
+    plan.windows[0].step1.auvs[1].surge_speed[2] += 0.1;
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["recorded surge speed"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The floor's identity
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn another_floor_fails_the_identity_family() {
+    let floor = flat();
+    let plan = build(&spec(1), &floor);
+    let other = grid(-300.0, -300.0, 5.0, 121, |_, _| Some(-100.5));
+    let r = check_plan(&plan, &other);
+    assert_fails_exactly(&r, &["seafloor identity"]);
+    let f = r.family("seafloor identity").unwrap();
+    assert!(
+        f.where_.contains("not the floor the plan was made on"),
+        "{}",
+        f.where_
+    );
+    assert_ne!(r.plan_fingerprint, r.floor_fingerprint);
+}
+
+#[test]
+fn load_floor_reads_the_named_file_and_refuses_another_floor() {
+    let dir = tempfile::tempdir().unwrap();
+    let floor = flat();
+    let good = dir.path().join("floor.asc");
+    floor.write_esri_ascii(&good).unwrap();
+    let other = dir.path().join("other.asc");
+    grid(-300.0, -300.0, 5.0, 121, |_, _| Some(-90.0))
+        .write_esri_ascii(&other)
+        .unwrap();
+
+    let mut plan = build(&spec(1), &floor);
+    plan.seafloor.path = Some(good.display().to_string());
+    let loaded = load_floor(&plan, None).unwrap();
+    assert_eq!(loaded.fingerprint(), plan.seafloor.fingerprint);
+    assert!(check_plan(&plan, &loaded).passed());
+
+    match load_floor(&plan, Some(&other)) {
+        Err(e @ CheckError::FingerprintMismatch { .. }) => {
+            assert!(
+                e.to_string().contains("not the floor the plan was made on"),
+                "{e}"
+            )
+        }
+        r => panic!("expected a fingerprint mismatch, got {r:?}"),
+    }
+    assert!(load_floor(&plan, Some(&good)).is_ok());
+    let missing = dir.path().join("missing.asc");
+    assert!(matches!(
+        load_floor(&plan, Some(&missing)),
+        Err(CheckError::ReadFloor { .. })
+    ));
+    plan.seafloor.path = None;
+    assert!(matches!(
+        load_floor(&plan, None),
+        Err(CheckError::NoFloorPath)
+    ));
+    plan.seafloor.source = "moon".into();
+    assert!(matches!(
+        load_floor(&plan, None),
+        Err(CheckError::UnknownSource(_))
+    ));
+}
+
+#[test]
+fn load_floor_regenerates_the_synthetic_floor() {
+    let mut sp = spec(1);
+    sp.s.seed = 7;
+    sp.s.seafloor.synthetic.size = [1000.0, 1000.0];
+    sp.s.seafloor.synthetic.seamounts = 3;
+    sp.s.seafloor.synthetic.valleys = 2;
+    let floor = Seafloor::synthetic(&sp.s.seafloor.synthetic, sp.s.seed).unwrap();
+    let mut plan = build(&sp, &floor);
+    plan.seafloor.source = "synthetic".into();
+    let loaded = load_floor(&plan, None).unwrap();
+    assert_eq!(loaded.fingerprint(), floor.fingerprint());
+    // another seed is another floor
+    plan.scenario.seed = 8;
+    assert!(matches!(
+        load_floor(&plan, None),
+        Err(CheckError::FingerprintMismatch { .. })
+    ));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Malformed plans: structure failures, never a panic
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn truncated_arrays_fail_the_structure_without_panicking() {
+    let floor = flat();
+    let plan = build(&spec(2), &floor);
+    let r = |p: &Plan| {
+        let r = check_plan(p, &floor);
+        assert!(failing(&r).contains(&"structure"), "\n{}", r.table());
+        r
+    };
+
+    let mut p = plan.clone();
+    p.windows[1].step1.auvs[0].position.pop();
+    let rep = r(&p);
+    assert!(
+        rep.problems[0].contains("window 1, AUV 0: 4 positions, expected 5"),
+        "{:?}",
+        rep.problems
+    );
+
+    let mut p = plan.clone();
+    p.windows[0].step1.usv.input.truncate(1);
+    r(&p);
+
+    let mut p = plan.clone();
+    p.windows[0].step1.auvs.pop();
+    r(&p);
+
+    let mut p = plan.clone();
+    p.windows.pop();
+    r(&p);
+
+    let mut p = plan.clone();
+    p.windows.clear();
+    r(&p);
+
+    let mut p = plan.clone();
+    p.initial.auvs.clear();
+    r(&p);
+
+    let mut p = plan.clone();
+    p.scenario.horizon.steps = 0;
+    r(&p);
+
+    // a corrupt K neither overflows nor makes the checker walk a huge range
+    let mut p = plan.clone();
+    p.scenario.horizon.steps = usize::MAX;
+    r(&p);
+
+    let mut p = plan.clone();
+    p.format = "shoal-plan/0".into();
+    r(&p);
+}
+
+/// Every array of the plan cut to every shorter length, one at a time: never a panic, always a
+/// structure failure.
+#[test]
+fn no_truncation_of_any_array_panics() {
+    let floor = flat();
+    let plan = build(&spec(2), &floor);
+    type Cut = fn(&mut Plan, usize, usize, usize) -> usize;
+    // (window, auv, new length) → original length
+    let cuts: [Cut; 8] = [
+        |p, w, _, l| cut(&mut p.windows[w].step1.usv.position, l),
+        |p, w, _, l| cut(&mut p.windows[w].step1.usv.input, l),
+        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].position, l),
+        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].velocity, l),
+        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].input, l),
+        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].surge_speed, l),
+        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].heading, l),
+        |p, w, _, l| cut(&mut p.windows[w].step1.auvs, l),
+    ];
+    fn cut<T>(v: &mut Vec<T>, len: usize) -> usize {
+        let was = v.len();
+        v.truncate(len);
+        was
+    }
+    let mut cases = 0;
+    for c in cuts {
+        for w in 0..2 {
+            for n in 0..2 {
+                for len in 0..=K {
+                    let mut p = plan.clone();
+                    let was = c(&mut p, w, n, len);
+                    if len >= was {
+                        continue;
+                    }
+                    let r = check_plan(&p, &floor);
+                    assert!(failing(&r).contains(&"structure"), "\n{}", r.table());
+                    let _ = r.table();
+                    cases += 1;
+                }
+            }
+        }
+    }
+    assert!(cases > 100);
+}
+
+#[test]
+fn non_finite_numbers_fail_without_panicking() {
+    let floor = flat();
+    let plan = build(&spec(2), &floor);
+    for value in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e300] {
+        for (w, n, k) in [(0, 0, 0), (0, 1, 2), (1, 0, K)] {
+            let mut p = plan.clone();
+            p.windows[w].step1.auvs[n].position[k][0] = value;
+            p.windows[w].step1.auvs[n].velocity[k][1] = value;
+            let r = check_plan(&p, &floor);
+            assert!(!r.passed(), "\n{}", r.table());
+            if !value.is_finite() {
+                assert!(failing(&r).contains(&"structure"));
+            }
+            let _ = r.table();
+        }
+        let mut p = plan.clone();
+        p.scenario.horizon.dt = value;
+        p.scenario.acoustic.resolution = value;
+        assert!(!check_plan(&p, &floor).passed());
+    }
+    let mut p = plan.clone();
+    p.scenario.acoustic.resolution = 0.0;
+    assert!(failing(&check_plan(&p, &floor)).contains(&"structure"));
+    let mut p = plan;
+    p.scenario.auv.mass = 0.0;
+    p.scenario.auv.added_mass_surge = 0.0;
+    assert!(failing(&check_plan(&p, &floor)).contains(&"model record"));
+}
+
+#[test]
+fn the_table_is_aligned_and_names_every_family() {
+    let floor = flat();
+    let r = check_plan(&build(&spec(1), &floor), &floor);
+    let table = r.table();
+    let lines: Vec<&str> = table.lines().collect();
+    assert!(lines[0].starts_with("family"));
+    let col = lines[0].find("result").unwrap();
+    for (line, f) in lines[2..].iter().zip(&r.families) {
+        assert!(line.starts_with(f.name), "{line}");
+        let result: String = line.chars().skip(col).take(4).collect();
+        assert_eq!(result, "PASS", "{line}");
+    }
+}
