@@ -104,7 +104,7 @@ fn spec(windows: usize) -> Spec {
     }
 }
 
-fn objective(s: &Scenario, usv: &UsvPath, auvs: &[AuvPath]) -> ObjectiveTerms {
+fn objective(s: &Scenario, floor: &Seafloor, usv: &UsvPath, auvs: &[AuvPath]) -> ObjectiveTerms {
     let energy = auvs
         .iter()
         .flat_map(|a| &a.input)
@@ -129,11 +129,21 @@ fn objective(s: &Scenario, usv: &UsvPath, auvs: &[AuvPath]) -> ObjectiveTerms {
             )
         }
     };
+    let height = auvs
+        .iter()
+        .flat_map(|a| &a.position[1..])
+        .map(|p| p[2] - floor.elevation(p[0], p[1]).unwrap_or(f64::NAN))
+        .sum();
+    let of1_2 = match s.weights.of1_2 {
+        shoal::scenario::DepthObjective::Height => height,
+        shoal::scenario::DepthObjective::Depth => depth,
+    };
     ObjectiveTerms {
         energy,
         depth,
+        height,
         usv: usv_term,
-        total: s.weights.w1 * energy + s.weights.w2 * depth + w_usv * usv_term,
+        total: s.weights.w1 * energy + s.weights.w2 * of1_2 + w_usv * usv_term,
     }
 }
 
@@ -222,7 +232,7 @@ fn build_with(
                 status: "converged".into(),
                 iterations: 1,
                 solve_time_s: 0.0,
-                objective: objective(s, &usv, &auvs),
+                objective: objective(s, floor, &usv, &auvs),
                 max_violation: 0.0,
                 usv,
                 auvs,
@@ -583,7 +593,7 @@ fn a_tampered_input_fails_the_dynamics_only() {
     let st = &mut plan.windows[1].step1;
     st.auvs[0].input[1][0] += 0.01;
     // a careful forger also fixes the stored objective
-    st.objective = objective(&plan.scenario, &st.usv, &st.auvs);
+    st.objective = objective(&plan.scenario, &floor, &st.usv, &st.auvs);
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(
         &r,
@@ -644,7 +654,8 @@ fn another_floor_fails_the_identity_family() {
     let plan = build(&spec(1), &floor);
     let other = grid(-300.0, -300.0, 5.0, 121, |_, _| Some(-100.5));
     let r = check_plan(&plan, &other);
-    assert_fails_exactly(&r, &["seafloor identity"]);
+    // the height-above-floor term of the objective is evaluated on the floor, so it differs too
+    assert_fails_exactly(&r, &["seafloor identity", "objective"]);
     let f = r.family("seafloor identity").unwrap();
     assert!(
         f.where_.contains("not the floor the plan was made on"),

@@ -70,7 +70,9 @@ fn wrap(x: f64) -> f64 {
 
 /// Relative difference of a and b against `scale` (0 when equal).
 fn rel(a: f64, b: f64, scale: f64) -> f64 {
-    if a == b {
+    // both NaN: a term that cannot be evaluated (a point off the grid, reported by its own
+    // family) on both sides
+    if a == b || (a.is_nan() && b.is_nan()) {
         0.0
     } else {
         (a - b).abs() / scale.max(f64::MIN_POSITIVE)
