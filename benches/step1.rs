@@ -20,7 +20,9 @@ fn step1(c: &mut Criterion) {
             overrides: vec![],
             seafloor_source: source,
         };
-        group.bench_function(format!("N={n},K=20"), |b| b.iter(|| plan(&input).expect("plan")));
+        group.bench_function(format!("N={n},K=20"), |b| {
+            b.iter(|| plan(&input).expect("plan"))
+        });
     }
     group.finish();
 }
