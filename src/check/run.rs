@@ -769,7 +769,7 @@ impl Checker<'_> {
             let height: f64 = st
                 .auvs
                 .iter()
-                .flat_map(|a| a.position.iter().take(self.k + 1).skip(1))
+                .flat_map(|a| a.position.iter().take(self.k.saturating_add(1)).skip(1))
                 .map(|p| p[2] - self.floor.elevation(p[0], p[1]).unwrap_or(f64::NAN))
                 .sum();
             let of1_2 = match wt.of1_2 {
