@@ -17,16 +17,20 @@ fn small(seed: u64) -> Scenario {
     .expect("valid overrides")
 }
 
-fn plan_and_check(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
+fn plan_only(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
     let (floor, source) = scenario_floor(s, Path::new("")).expect("floor");
-    let input = PlanInput {
+    plan(&PlanInput {
         scenario: s,
         floor: &floor,
         scenario_source: "test".into(),
         overrides: vec![],
         seafloor_source: source,
-    };
-    let p = plan(&input)?;
+    })
+}
+
+fn plan_and_check(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
+    let (floor, _) = scenario_floor(s, Path::new("")).expect("floor");
+    let p = plan_only(s)?;
     let report = shoal::check::check_plan(&p, &floor);
     assert!(report.passed(), "plan fails its check:\n{}", report.table());
     Ok(p)
@@ -64,15 +68,7 @@ fn an_initial_auv_beyond_sonar_range_is_refused_naming_c1_6() {
         usv: [0.0, 0.0],
         auvs: vec![[10.0, 0.0, -40.0], [0.0, 400.0, -40.0]],
     });
-    let (floor, source) = scenario_floor(&s, Path::new("")).unwrap();
-    let input = PlanInput {
-        scenario: &s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    };
-    let err = plan(&input).unwrap_err();
+    let err = plan_only(&s).unwrap_err();
     let msg = err.to_string();
     assert!(matches!(err, PlanError::InvalidStart { .. }), "{msg}");
     assert!(msg.contains("AUV 1") && msg.contains("C1_6"), "{msg}");
@@ -81,15 +77,7 @@ fn an_initial_auv_beyond_sonar_range_is_refused_naming_c1_6() {
 #[test]
 fn unstable_euler_is_refused_with_the_reason() {
     let s = scenario::default_with(&["auv.discretisation=euler".into()]).unwrap();
-    let (floor, source) = scenario_floor(&s, Path::new("")).unwrap();
-    let input = PlanInput {
-        scenario: &s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    };
-    let msg = plan(&input).unwrap_err().to_string();
+    let msg = plan_only(&s).unwrap_err().to_string();
     assert!(msg.contains("unstable") && msg.contains("zoh"), "{msg}");
 }
 

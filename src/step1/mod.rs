@@ -19,7 +19,7 @@ mod layout;
 pub use layout::Layout;
 
 use crate::conic::{ConicSolution, ConicSolver, Pattern};
-use crate::linearise::{segment_intervals, usv_away, Heading};
+use crate::linearise::{usv_away, Heading};
 use crate::planner::PlanError;
 use crate::scenario::{DepthObjective, Scenario, UsvObjective};
 use crate::scp::{self, Evaluation, ScpOutcome, ScpProblem};
@@ -357,15 +357,4 @@ impl ScpProblem for Step1<'_> {
             detail: worst.1,
         }
     }
-}
-
-/// Number of sample intervals of every AUV segment of `t` (for reports and tests).
-pub fn segment_samples(t: &Trajectory, resolution: f64) -> usize {
-    t.auv_p
-        .iter()
-        .flat_map(|p| {
-            p.windows(2)
-                .map(|w| segment_intervals(w[0], w[1], resolution))
-        })
-        .sum()
 }
