@@ -162,6 +162,34 @@ impl ConicSolver {
         Ok(())
     }
 
+    /// Name the first group of constraints without which the problem (last data `b`) becomes
+    /// solvable: each group in turn has its bound rows set to a huge value (a deletion filter;
+    /// the pattern is unchanged). Leaves the solver with `b` restored. Only for failures: one
+    /// solve per group.
+    pub fn diagnose<'g>(
+        &mut self,
+        b: &[f64],
+        groups: &'g [(&'g str, Vec<usize>)],
+    ) -> Option<&'g str> {
+        const RELAXED: f64 = 1e9;
+        let mut found = None;
+        for (name, rows) in groups {
+            let mut relaxed = b.to_vec();
+            for &r in rows {
+                relaxed[r] = RELAXED;
+            }
+            if self.solver.update_b(&relaxed).is_err() {
+                break;
+            }
+            if self.solve().usable() {
+                found = Some(*name);
+                break;
+            }
+        }
+        let _ = self.solver.update_b(&b.to_vec());
+        found
+    }
+
     pub fn solve(&mut self) -> ConicSolution {
         self.solver.solve();
         let s = &self.solver.solution;
@@ -221,5 +249,32 @@ mod tests {
             .unwrap();
         let r = s.solve();
         assert!((r.x[0] - 2.0 / n).abs() < 1e-6 && (r.x[1] - 4.0 / n).abs() < 1e-6);
+    }
+
+    /// x ≥ 1 (group "lower") and x ≤ 0 (group "upper") conflict; y ≤ 5 ("other") does not.
+    /// The deletion filter skips "other" and names "lower", then leaves the data as it was.
+    #[test]
+    fn diagnose_names_the_group_whose_removal_restores_feasibility() {
+        let mut pt = Triplets::default();
+        pt.push(0, 0, 1.0);
+        pt.push(1, 1, 1.0);
+        let mut at = Triplets::default();
+        at.push(0, 1, 1.0); // y ≤ 5
+        at.push(1, 0, -1.0); // −x ≤ −1
+        at.push(2, 0, 1.0); // x ≤ 0
+        let b = [5.0, -1.0, 0.0];
+        let mut s = ConicSolver::new(
+            Pattern::new(2, 2, &pt),
+            &[0.0, 0.0],
+            Pattern::new(3, 2, &at),
+            &b,
+            &[NonnegativeConeT(3)],
+        )
+        .unwrap();
+        assert_eq!(s.solve().status, SolverStatus::PrimalInfeasible);
+        let groups = [("other", vec![0]), ("lower", vec![1]), ("upper", vec![2])];
+        assert_eq!(s.diagnose(&b, &groups), Some("lower"));
+        assert_eq!(s.diagnose(&b, &groups[..1]), None);
+        assert_eq!(s.solve().status, SolverStatus::PrimalInfeasible);
     }
 }

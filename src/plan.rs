@@ -153,7 +153,9 @@ pub struct ScpIteration {
     pub accepted: bool,
     /// Largest true constraint violation of the candidate.
     pub violation: f64,
-    /// Clarabel's status and time for the subproblem.
+    /// Clarabel's status, interior-point iterations and time for the subproblem.
     pub solver_status: String,
+    #[serde(default)]
+    pub solver_iterations: u32,
     pub solver_time_s: f64,
 }

@@ -35,10 +35,24 @@ pub enum PlanError {
         status: String,
         iterations: u32,
     },
+    #[error("{stage}: the convex subproblem is infeasible (Clarabel status {status}); {}", culprit_text(.culprit))]
+    ConvexInfeasible {
+        stage: &'static str,
+        status: String,
+        /// The first constraint group without which it becomes feasible, if one is.
+        culprit: Option<String>,
+    },
     #[error("{stage}: a constraint cannot hold: {detail}")]
     Infeasible { stage: &'static str, detail: String },
     #[error(transparent)]
     Scp(#[from] crate::scp::ScpFailure),
+}
+
+fn culprit_text(c: &Option<String>) -> String {
+    match c {
+        Some(c) => format!("it becomes feasible without {c}, so that constraint cannot hold"),
+        None => "no single constraint group is to blame: several conflict".into(),
+    }
 }
 
 /// Everything the planner needs besides the scenario: the floor and where things came from.
@@ -180,7 +194,9 @@ pub fn scenario_floor(
         Some(f) => {
             let path = base_dir.join(f);
             let floor = Seafloor::read_esri_ascii(&path)?;
-            Ok((floor, ("file".into(), Some(path.display().to_string()))))
+            // recorded absolute, so that `shoal check` finds it from any working directory
+            let recorded = std::fs::canonicalize(&path).unwrap_or(path);
+            Ok((floor, ("file".into(), Some(recorded.display().to_string()))))
         }
         None => Ok((
             Seafloor::synthetic(&s.seafloor.synthetic, s.seed)?,

@@ -11,7 +11,8 @@
 //!   ρ = (φ(x̄) − φ(x*)) / (φ(x̄) − L(x*)),   φ = J + λ·Σ max(0, g),   L = its convex model,
 //!
 //! growing Δ when ρ is high and shrinking it when ρ is low. The loop stops when the model
-//! predicts a negligible decrease and the true violation is below the feasibility tolerance; if
+//! predicts a decrease below `tolerance`·(1 + Σ|weighted objective terms|) and the true
+//! violation is below the feasibility tolerance; if
 //! the decrease vanishes while a violation remains, λ is raised (up to 10⁴·λ₀) before the
 //! constraint is declared impossible.
 
@@ -43,6 +44,10 @@ pub struct Evaluation {
     pub objective: f64,
     pub violation: f64,
     pub max_violation: f64,
+    /// Σ |weighted objective term|: the size of the objective, against which the convergence
+    /// tolerance is measured. (|J| itself is useless as a scale when the terms nearly cancel,
+    /// as −w8·OF1_8 and w1·OF1_1 do in P2.)
+    pub magnitude: f64,
 }
 
 impl Evaluation {
@@ -104,6 +109,9 @@ where
     let mut penalty = settings.penalty;
     let mut trace = Vec::new();
     let mut have_feasible_reference = false;
+    // the best accepted iterate that meets every constraint: returned at the iteration limit
+    // if the last accepted one (the merit tolerates small violations) does not
+    let mut best: Option<(P::Iterate, Evaluation)> = None;
 
     for it in 0..settings.max_iterations {
         let (candidate, model_merit, report) = problem.solve_model(&reference, radius, penalty)?;
@@ -118,7 +126,7 @@ where
             1.0
         };
         let first = it == 0;
-        let scale = 1.0 + phi_ref.abs();
+        let scale = 1.0 + reference_eval.magnitude;
         let negligible = !first && predicted <= settings.tolerance * scale;
 
         let mut record = crate::plan::ScpIteration {
@@ -130,6 +138,7 @@ where
             accepted: false,
             violation: candidate_eval.max_violation,
             solver_status: format!("{:?}", report.status),
+            solver_iterations: report.iterations,
             solver_time_s: report.solve_time_s,
         };
 
@@ -156,6 +165,13 @@ where
             reference = candidate;
             reference_eval = candidate_eval;
             have_feasible_reference = true;
+            if reference_eval.max_violation <= settings.feasibility_tol
+                && best
+                    .as_ref()
+                    .map_or(true, |(_, e)| reference_eval.objective < e.objective)
+            {
+                best = Some((reference.clone(), reference_eval));
+            }
         }
         if !first {
             if ratio < RHO1 {
@@ -170,6 +186,11 @@ where
         }
     }
 
+    if reference_eval.max_violation > settings.feasibility_tol {
+        if let Some((x, e)) = best {
+            (reference, reference_eval) = (x, e);
+        }
+    }
     if have_feasible_reference && reference_eval.max_violation <= settings.feasibility_tol {
         Ok(ScpOutcome {
             iterate: reference,
@@ -263,6 +284,7 @@ mod tests {
                 objective: x[0] * x[0] + x[1] * x[1],
                 violation: v,
                 max_violation: v,
+                magnitude: x[0] * x[0] + x[1] * x[1],
             }
         }
         fn infeasible(&self, _: &[f64; 2]) -> Fail {

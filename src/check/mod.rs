@@ -314,7 +314,8 @@ pub enum CheckError {
 
 /// Load the floor the plan names: regenerate the synthetic one from
 /// `plan.scenario.seafloor.synthetic` and `plan.scenario.seed`, or read `plan.seafloor.path`
-/// (relative paths resolve against the current directory, as the planner recorded them);
+/// (the planner records it as an absolute path; a relative one resolves against the current
+/// directory);
 /// `override_path` (an ESRI ASCII grid) replaces it. The floor must have the fingerprint the
 /// plan records, otherwise [`CheckError::FingerprintMismatch`].
 pub fn load_floor(plan: &Plan, override_path: Option<&Path>) -> Result<Seafloor, CheckError> {

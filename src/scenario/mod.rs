@@ -184,7 +184,8 @@ pub struct Scp {
     /// Largest number of SCP iterations per window and stage.
     pub max_iterations: usize,
     /// Convergence: stop when the predicted decrease of the merit function is below this
-    /// fraction of its magnitude (and the true constraint violation is below `feasibility_tol`).
+    /// fraction of the objective's size, 1 + Σ |weighted term| (and the true constraint
+    /// violation is below `feasibility_tol`).
     pub tolerance: f64,
     /// Largest true violation (metres, radians) accepted at convergence.
     pub feasibility_tol: f64,

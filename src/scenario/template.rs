@@ -164,7 +164,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "scp.max_iterations" => "Largest number of SCP iterations per window and stage. ≥ 1.",
         "scp.tolerance" => {
             "Convergence: stop when the predicted decrease of the merit function is below this \
-             fraction of its magnitude (and the violation is below feasibility_tol). > 0."
+             fraction of the objective's size, 1 + Σ|weighted term| (and the violation is \
+             below feasibility_tol). > 0."
         }
         "scp.feasibility_tol" => {
             "Largest true constraint violation accepted at convergence (metres, radians). > 0."

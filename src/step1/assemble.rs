@@ -28,6 +28,9 @@ pub struct Assembly {
     pub cones: Vec<SupportedConeT<f64>>,
     /// Constant of the model objective (so model merit = ½xᵀPx + qᵀx + constant).
     pub constant: f64,
+    /// Groups of convex constraints by name, each with the rows whose b (a bound) disables the
+    /// group when made huge: what `ConicSolver::diagnose` needs to name an infeasible one.
+    pub groups: Vec<(&'static str, Vec<usize>)>,
 }
 
 impl Assembly {
@@ -35,7 +38,22 @@ impl Assembly {
         self.b.push(b);
         self.b.len() - 1
     }
+    /// Record `row` as a bound of the group `name`.
+    fn group(&mut self, name: &'static str, row: usize) {
+        match self.groups.iter_mut().find(|g| g.0 == name) {
+            Some(g) => g.1.push(row),
+            None => self.groups.push((name, vec![row])),
+        }
+    }
 }
+
+const UNDERWATER: &str = "C1_4 (AUVs stay below the surface clearance)";
+const GRID: &str = "the grid bounds (every vehicle stays over the seafloor grid)";
+const USV_SPEED: &str = "the USV speed limit of eq. (9)";
+const AUV_SPEED: &str = "C1_7 (AUV speed limit)";
+const RANGE_MAX: &str = "C1_5 (every AUV within d_max of the USV)";
+const RANGE_END: &str = "C1_6 (every AUV within d_s of the USV at k = K)";
+const TRUST: &str = "the trust region about the previous iterate";
 
 impl Step1<'_> {
     pub(super) fn assemble(
@@ -56,6 +74,7 @@ impl Step1<'_> {
             b: Vec::new(),
             cones: Vec::new(),
             constant: 0.0,
+            groups: Vec::new(),
         };
 
         // ---- objective: w1·OF1_1 + w2·OF1_2 ± USV term + λ·slacks ----
@@ -157,16 +176,32 @@ impl Step1<'_> {
         for n in 0..nn {
             for k in 1..=kk {
                 let z = l.auv_p(n, k) + 2;
-                let row = m.row(-s.auv.surface_clearance); // C1_4: z ≤ −surface clearance
+                // C1_4: z ≤ −surface clearance
+                let row = m.row(-s.auv.surface_clearance - RANGE_MARGIN);
                 m.a.push(row, z, 1.0);
+                m.group(UNDERWATER, row);
                 // grid bounds: the floor is only known inside the grid
                 let x = l.auv_p(n, k);
                 for (col, lo, hi) in [(x, ext.x_min, ext.x_max), (x + 1, ext.y_min, ext.y_max)] {
                     let row = m.row(hi);
                     m.a.push(row, col, 1.0);
+                    m.group(GRID, row);
                     let row = m.row(-lo);
                     m.a.push(row, col, -1.0);
+                    m.group(GRID, row);
                 }
+            }
+        }
+        // the USV stays over the known map too: past the edge, OF1_8 would drag the team out
+        for k in 1..=kk {
+            let x = l.usv_p(k);
+            for (col, lo, hi) in [(x, ext.x_min, ext.x_max), (x + 1, ext.y_min, ext.y_max)] {
+                let row = m.row(hi);
+                m.a.push(row, col, 1.0);
+                m.group(GRID, row);
+                let row = m.row(-lo);
+                m.a.push(row, col, -1.0);
+                m.group(GRID, row);
             }
         }
         self.floor_rows(r, &mut m)?;
@@ -184,7 +219,8 @@ impl Step1<'_> {
         // ---- second-order cones ----
         for k in 0..kk {
             // ‖U_USV[k]‖ ≤ USV max speed (eq. (9))
-            m.row(s.usv.max_speed);
+            let row = m.row(s.usv.max_speed * (1.0 - SPEED_MARGIN));
+            m.group(USV_SPEED, row);
             for i in 0..2 {
                 let row = m.row(0.0);
                 m.a.push(row, l.usv_u(k) + i, 1.0);
@@ -194,19 +230,21 @@ impl Step1<'_> {
         for n in 0..nn {
             for k in 1..=kk {
                 // C1_7: ‖V_n[k]‖ ≤ V_max
-                m.row(s.auv.max_speed);
+                let row = m.row(s.auv.max_speed * (1.0 - SPEED_MARGIN));
+                m.group(AUV_SPEED, row);
                 for i in 0..3 {
                     let row = m.row(0.0);
                     m.a.push(row, l.auv_v(n, k) + i, 1.0);
                 }
                 m.cones.push(SecondOrderConeT(4));
                 // C1_5 (k < K): ‖P_n − P_USV‖ ≤ d_max; C1_6 (k = K): ≤ d_s
-                let range = if k == kk {
-                    s.acoustic.sonar_range
+                let (range, group) = if k == kk {
+                    (s.acoustic.sonar_range, RANGE_END)
                 } else {
-                    s.acoustic.max_range
+                    (s.acoustic.max_range, RANGE_MAX)
                 };
-                m.row(range);
+                let row = m.row(range - RANGE_MARGIN);
+                m.group(group, row);
                 for i in 0..3 {
                     let row = m.row(0.0);
                     m.a.push(row, l.auv_p(n, k) + i, 1.0);
@@ -216,7 +254,8 @@ impl Step1<'_> {
                 }
                 m.cones.push(SecondOrderConeT(4));
                 // trust region: ‖P_n,xy[k] − P̄_n,xy[k]‖ ≤ Δ
-                m.row(radius);
+                let row = m.row(radius);
+                m.group(TRUST, row);
                 for i in 0..2 {
                     let row = m.row(r.auv_p[n][k][i]);
                     m.a.push(row, l.auv_p(n, k) + i, 1.0);
@@ -243,7 +282,9 @@ impl Step1<'_> {
         let mut g = Vec::new();
         for n in 0..l.n {
             for k in 1..=l.k {
-                let (pa, pb) = (r.auv_p[n][k - 1], r.auv_p[n][k]);
+                // a first guess may run past the grid's edge: linearise at the nearest point
+                // inside (the grid-bound rows bring the candidate back in)
+                let (pa, pb) = (self.inside(r.auv_p[n][k - 1]), self.inside(r.auv_p[n][k]));
                 let used = segment_intervals(pa, pb, res);
                 g.clear();
                 for j in 1..=used {
@@ -317,6 +358,13 @@ impl Step1<'_> {
         }
     }
 }
+
+/// Margins by which the convex model tightens the convex bounds (ranges and the surface, in
+/// metres; speeds, relative), so that the solver's own residuals (up to about 1e-4 m on
+/// positions of a few km, once the plan is re-simulated from its inputs) cannot leave a
+/// bound violated beyond the checker's 1e-6 tolerance.
+const RANGE_MARGIN: f64 = 1e-3;
+const SPEED_MARGIN: f64 = 1e-6;
 
 /// Extra clearance (m) the convex model asks for beyond ε (constraint tightening).
 pub(super) const FLOOR_MARGIN: f64 = 0.05;
