@@ -6,8 +6,9 @@
 //! - [`scenario`]: every parameter (Section V defaults), TOML loading and validation.
 //! - [`seafloor`]: Z(x, y), bilinear, gradient, segment query 𝓛_r, ESRI ASCII, synthetic floor.
 //! - [`vehicle`]: AUV model eqs. (5)–(8) (zero-order hold or Euler), USV model eq. (9).
+//! - [`team`]: the window's variables, constraints and objective, shared by P2 and P5.
 //! - [`step1`]: Step 1, problem P2, solved by [`scp`] (SCvx trust region) over [`conic`] (Clarabel).
-//! - [`plan`]: the plan file (`shoal-plan/1`); [`output`]: atomic writing of plan.json and CSVs.
+//! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs.
 //! - [`check`]: independent verification of a plan against the seafloor.
 
 // Numeric kernels index several parallel arrays (x, y, z of positions, gradients and
@@ -25,5 +26,6 @@ pub mod scenario;
 pub mod scp;
 pub mod seafloor;
 pub mod step1;
+pub mod team;
 pub mod trajectory;
 pub mod vehicle;

@@ -1,4 +1,4 @@
-//! The plan file, format `shoal-plan/1` (documented field by field in docs/plan-format.md).
+//! The plan file, format `shoal-plan/2` (documented field by field in docs/plan-format.md).
 //!
 //! Index conventions: a window has K steps; positions and velocities are given for k = 0..=K
 //! (K + 1 entries, k = 0 is the window's initial state), inputs for k = 0..K−1 (K entries; input
@@ -8,7 +8,7 @@ use crate::scenario::Scenario;
 use serde::{Deserialize, Serialize};
 
 /// Value of the `format` field of every plan this version writes.
-pub const FORMAT: &str = "shoal-plan/1";
+pub const FORMAT: &str = "shoal-plan/2";
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Plan {
@@ -27,6 +27,8 @@ pub struct Plan {
     /// State at the start of window 0.
     pub initial: InitialState,
     pub windows: Vec<Window>,
+    /// Metrics over the whole mission (every window).
+    pub metrics: Metrics,
 }
 
 /// Where the floor came from and a fingerprint of its grid, so a checker can tell it has the
@@ -82,6 +84,90 @@ pub struct Window {
     pub start_time: f64,
     /// Step 1 (problem P2).
     pub step1: Stage,
+    /// Step 2: the A2U link (P3) and A2A path (P4) per step, from Step 1's positions.
+    pub graph: Graph,
+    /// Step 3 (problem P5) with the line-of-sight rounds of Algorithm 1, lines 18–22: the plan
+    /// the team executes. The next window starts from its last state.
+    #[serde(rename = "final")]
+    pub final_: Stage,
+    /// The links P5 kept in their bands, the bands used, and where a link is outside its band.
+    pub links: LinkReport,
+    pub metrics: Metrics,
+}
+
+/// Step 2's output for one window.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Graph {
+    /// P3: per step k = 0..=K, the AUV (index) nearest the USV: the A2U link.
+    pub a2u: Vec<usize>,
+    /// P4: per step k = 0..=K, the A2A edges [i, j] (i < j) of the longest Hamiltonian path,
+    /// N − 1 of them, in path order.
+    pub a2a: Vec<Vec<[usize; 2]>>,
+    /// True when every P4 was solved exactly (Held–Karp, N ≤ 12); false for the heuristic.
+    pub exact: bool,
+    pub solve_time_s: f64,
+}
+
+/// One acoustic link: AUV `a` to AUV `b`, or to the USV when `b` is None.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Link {
+    pub a: usize,
+    pub b: Option<usize>,
+}
+
+/// The band [lo, hi] (metres) a link's length is kept in: C5_2/C5_3's [d_s − d_t, d_s], with hi
+/// lowered for a link that lost line of sight (Algorithm 1, line 20).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Band {
+    pub lo: f64,
+    pub hi: f64,
+}
+
+/// A planned link whose length in the final plan is outside its band.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OutOfBand {
+    pub k: usize,
+    pub link: Link,
+    pub length: f64,
+    pub band: Band,
+}
+
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct LinkReport {
+    /// Per step k = 0..=K: the planned links (the A2U link first, then the A2A edges in path
+    /// order) and their bands. At k = 0 the positions are the window's fixed start, so its links
+    /// are reported but not planned.
+    pub links: Vec<Vec<Link>>,
+    pub bands: Vec<Vec<Band>>,
+    /// Every (step, link) of k = 1..=K whose final length is outside its band by more than 1 mm.
+    pub out_of_band: Vec<OutOfBand>,
+    /// Line-of-sight rounds of Algorithm 1, lines 18–22 (1 = the first P5 solve had LoS on
+    /// every link).
+    pub los_rounds: usize,
+}
+
+/// Mission metrics (per window, and over the mission in `Plan::metrics`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    /// Σ ‖U_n[k]‖² over AUVs and steps, (m/s²)².
+    pub input_energy: f64,
+    /// Area of seafloor swept by the union of the AUVs' sensor swaths, km².
+    pub explored_area_km2: f64,
+    /// Mean and minimum height above the floor over the AUV waypoints k = 1..=K, metres.
+    pub mean_height: f64,
+    pub min_height: f64,
+    /// Fraction of steps at which every AUV reaches the USV through links in range (≤ d_s) and
+    /// in line of sight: must be 1.
+    pub connected_fraction: f64,
+    /// Fraction of steps at which the planned chain (A2U link + A2A path) has every link in
+    /// range and in line of sight.
+    pub chain_fraction: f64,
+    /// Largest heading rate of any AUV, rad/s.
+    pub max_heading_rate: f64,
+    /// Solve times, seconds: Step 1, Step 2, Step 3 (per window; summed over the mission).
+    pub step1_time_s: f64,
+    pub step2_time_s: f64,
+    pub step3_time_s: f64,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

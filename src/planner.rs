@@ -8,7 +8,7 @@ use crate::plan::{
 };
 use crate::scenario::Scenario;
 use crate::seafloor::{Seafloor, SeafloorError};
-use crate::step1::Step1;
+use crate::team::TeamProblem;
 use crate::trajectory::Start;
 use crate::vehicle::{AuvModel, Damping, UsvModel, VehicleError};
 use rand::{Rng, SeedableRng};
@@ -233,9 +233,8 @@ pub fn plan_with_progress(
     for w in 0..s.windows {
         check_start(s, floor, &start, w)?;
         let clock = Instant::now();
-        let mut step1 = Step1::new(s, floor, auv, usv, start.clone());
-        let guess = step1.initial_guess(heading);
-        let out = step1.solve(guess)?;
+        let mut step1 = TeamProblem::new(s, floor, auv, usv, start.clone());
+        let out = crate::step1::solve(&mut step1, heading)?;
         let t = &out.iterate;
         let terms = step1.terms(t);
         let stage = Stage {
@@ -263,7 +262,11 @@ pub fn plan_with_progress(
         windows.push(Window {
             index: w,
             start_time: w as f64 * s.horizon.steps as f64 * s.horizon.dt,
+            final_: stage.clone(),
             step1: stage,
+            graph: Default::default(),
+            links: Default::default(),
+            metrics: Default::default(),
         });
     }
     let (z_min, z_max) = floor.z_range();
@@ -289,5 +292,6 @@ pub fn plan_with_progress(
         model: ModelRecord { damping, auv, usv },
         initial,
         windows,
+        metrics: Default::default(),
     })
 }

@@ -228,6 +228,19 @@ fn build_with(
         windows.push(Window {
             index: w,
             start_time: (w * k) as f64 * dt,
+            graph: Default::default(),
+            links: Default::default(),
+            metrics: Default::default(),
+            final_: Stage {
+                status: "converged".into(),
+                iterations: 1,
+                solve_time_s: 0.0,
+                objective: objective(s, floor, &usv, &auvs),
+                max_violation: 0.0,
+                usv: usv.clone(),
+                auvs: auvs.clone(),
+                scp: vec![],
+            },
             step1: Stage {
                 status: "converged".into(),
                 iterations: 1,
@@ -283,6 +296,7 @@ fn build_with(
         model,
         initial,
         windows,
+        metrics: Default::default(),
     }
 }
 

@@ -119,7 +119,7 @@ fn cli_plans_writes_outputs_and_check_passes() {
     // the plan echoes the resolved scenario with its seed
     let json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("plan.json")).unwrap()).unwrap();
-    assert_eq!(json["format"], "shoal-plan/1");
+    assert_eq!(json["format"], "shoal-plan/2");
     assert_eq!(json["scenario"]["seed"], 1);
     assert_eq!(json["scenario"]["team"]["auvs"], 2);
 }

@@ -9,7 +9,7 @@
 //! - second-order cones: USV speed, AUV speed C1_7, AUV–USV range C1_5 (k < K) and C1_6 (k = K),
 //!   trust region on AUV horizontal positions.
 
-use super::Step1;
+use super::TeamProblem;
 use crate::conic::Triplets;
 use crate::linearise::{floor_sample, segment_intervals, usv_away};
 use crate::planner::PlanError;
@@ -55,7 +55,7 @@ const RANGE_MAX: &str = "C1_5 (every AUV within d_max of the USV)";
 const RANGE_END: &str = "C1_6 (every AUV within d_s of the USV at k = K)";
 const TRUST: &str = "the trust region about the previous iterate";
 
-impl Step1<'_> {
+impl TeamProblem<'_> {
     pub(super) fn assemble(
         &self,
         r: &Trajectory,

@@ -1,8 +1,6 @@
-//! Step 1 of Section IV-A: problem P2 — energy-efficient, floor-following, collision-free paths
-//! for the USV and the AUVs, with the graph terms of P1 relaxed.
-//!
-//!   OF2:  min Σ_k ( w1·OF1_1 + w2·OF1_2 ) − w8·OF1_8     (or + w8_2·OF1_8_2)
-//!   s.t.  C2_1 = C1_1…C1_7, C2_2 (floor clearance), C1_14 (heading rate)
+//! The team problem of one window: the variables (states, inputs, slacks of the USV and N AUVs
+//! over k = 0..=K), the constraints and the objective terms that P2 (Step 1, `step1`) and P5
+//! (Step 3, `step3`) share, and its SCvx glue (`scp`). P5 adds the acoustic links (`Links`).
 //!
 //! Departures from the paper, each for a reason:
 //! - OF1_8 does not depend on k, so it enters once (w8 absorbs the paper's factor K).
@@ -36,7 +34,7 @@ const HEADING_MARGIN: f64 = 0.005;
 const GUESS_HEIGHT: f64 = 5.0;
 
 /// P2 for one window.
-pub struct Step1<'a> {
+pub struct TeamProblem<'a> {
     scenario: &'a Scenario,
     floor: &'a Seafloor,
     auv: AuvModel,
@@ -60,19 +58,19 @@ pub struct Terms {
     pub usv: f64,
 }
 
-impl<'a> Step1<'a> {
+impl<'a> TeamProblem<'a> {
     pub fn new(
         scenario: &'a Scenario,
         floor: &'a Seafloor,
         auv: AuvModel,
         usv: UsvModel,
         start: Start,
-    ) -> Step1<'a> {
+    ) -> TeamProblem<'a> {
         let layout = Layout {
             k: scenario.horizon.steps,
             n: scenario.team.auvs,
         };
-        Step1 {
+        TeamProblem {
             scenario,
             floor,
             auv,
@@ -299,7 +297,7 @@ impl<'a> Step1<'a> {
     }
 }
 
-impl ScpProblem for Step1<'_> {
+impl ScpProblem for TeamProblem<'_> {
     type Iterate = Trajectory;
     type Error = PlanError;
 
