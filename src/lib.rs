@@ -16,6 +16,7 @@
 
 pub mod check;
 pub mod conic;
+pub mod graph;
 pub mod linearise;
 pub mod output;
 pub mod plan;
