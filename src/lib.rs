@@ -17,6 +17,7 @@
 
 pub mod check;
 pub mod conic;
+pub mod graph;
 pub mod linearise;
 pub mod output;
 pub mod plan;
