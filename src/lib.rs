@@ -8,6 +8,8 @@
 //! - [`vehicle`]: AUV model eqs. (5)–(8) (zero-order hold or Euler), USV model eq. (9).
 //! - [`team`]: the window's variables, constraints and objective, shared by P2 and P5.
 //! - [`step1`]: Step 1, problem P2, solved by [`scp`] (SCvx trust region) over [`conic`] (Clarabel).
+//! - [`step2`]: Step 2, P3 (A2U link) and P4 (A2A path, [`graph`]) per step.
+//! - [`step3`]: Step 3, problem P5 with the line-of-sight loop (Algorithm 1, lines 17–22).
 //! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs.
 //! - [`check`]: independent verification of a plan against the seafloor.
 
@@ -19,6 +21,7 @@ pub mod check;
 pub mod conic;
 pub mod graph;
 pub mod linearise;
+pub mod metrics;
 pub mod output;
 pub mod plan;
 pub mod planner;
@@ -27,6 +30,8 @@ pub mod scenario;
 pub mod scp;
 pub mod seafloor;
 pub mod step1;
+pub mod step2;
+pub mod step3;
 pub mod team;
 pub mod trajectory;
 pub mod vehicle;

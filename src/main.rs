@@ -2,6 +2,7 @@
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
+use shoal::planner::Progress;
 use shoal::scenario::{self, Scenario};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -168,11 +169,26 @@ fn plan(
         "planning {} window(s): N = {} AUVs, K = {} steps of δ = {} s, seed {}",
         s.windows, s.team.auvs, s.horizon.steps, s.horizon.dt, s.seed
     );
-    let plan = shoal::planner::plan_with_progress(&input, |w, st| {
-        eprintln!(
-            "  window {w}: step 1 {} after {} SCP iterations in {:.3} s",
-            st.status, st.iterations, st.solve_time_s
-        )
+    let plan = shoal::planner::plan_with_progress(&input, |event| match event {
+        Progress::Step1 { window, stage } => eprintln!(
+            "  window {window}: step 1 (P2) {} after {} SCP iterations in {:.3} s",
+            stage.status, stage.iterations, stage.solve_time_s
+        ),
+        Progress::Step2 { window, graph } => eprintln!(
+            "  window {window}: step 2 (P3 + P4) {} graph in {:.4} s",
+            if graph.exact { "exact" } else { "heuristic" },
+            graph.solve_time_s
+        ),
+        Progress::Step3 {
+            window,
+            stage,
+            los_rounds,
+            out_of_band,
+        } => eprintln!(
+            "  window {window}: step 3 (P5) {} after {} SCP iterations, {los_rounds} line-of-sight \
+             round(s), {out_of_band} link-step(s) outside their band, in {:.3} s",
+            stage.status, stage.iterations, stage.solve_time_s
+        ),
     })?;
     let plan_path = out.join("plan.json");
     shoal::output::write_plan(&plan, &plan_path)?;

@@ -198,7 +198,15 @@ pub struct ObjectiveTerms {
     pub height: f64,
     /// OF1_8: ‖P_USV[K] − P_USV[0]‖², m² (objective "away"), or OF1_8_2: ‖P_USV[K] − dest‖², m².
     pub usv: f64,
-    /// w1·energy + w2·(height or depth) − w8·usv (away) or + w8_2·usv (destination).
+    /// OF1_5 (Step 3): Σ_k Σ ‖P_i − P_j‖² over AUV pairs not joined by an A2A edge, m².
+    #[serde(default)]
+    pub spread: f64,
+    /// OF1_3 + OF1_4 as C5_2/C5_3 slacks (Step 3): Σ metres by which planned links are outside
+    /// their bands.
+    #[serde(default)]
+    pub band: f64,
+    /// w1·energy + w2·(height or depth) − w8·usv (away) or + w8_2·usv (destination); in Step 3
+    /// also − w5·spread + w3·(A2U band) + w4·(A2A band).
     pub total: f64,
 }
 

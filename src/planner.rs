@@ -1,15 +1,21 @@
-//! Algorithm 1's outer loop for the stages built so far: the initial state (line 5), then for
-//! each window Step 1 (P2), the next window starting where the last one ended (line 7).
+//! Algorithm 1's outer loop: the initial state (line 5), then for each window Step 1 (P2, line 9),
+//! Step 2 (P3 and P4 per step, lines 13–16), Step 3 (P5 with the line-of-sight loop, lines
+//! 17–22), the acoustic chain verified at every step, and the next window starting where the last
+//! one ended (line 7).
 
 use crate::conic::ConicError;
+use crate::metrics::{mission_metrics, window_metrics, MetricParams};
 use crate::plan::{
-    AuvState, InitialState, ModelRecord, ObjectiveTerms, Plan, SeafloorRecord, Stage, Window,
-    FORMAT,
+    AuvState, Graph, InitialState, LinkReport, Metrics, ModelRecord, ObjectiveTerms, Plan,
+    SeafloorRecord, Stage, Window, FORMAT,
 };
 use crate::scenario::Scenario;
+use crate::scp::ScpOutcome;
 use crate::seafloor::{Seafloor, SeafloorError};
+use crate::step3::LinkSet;
 use crate::team::TeamProblem;
 use crate::trajectory::Start;
+use crate::trajectory::Trajectory;
 use crate::vehicle::{AuvModel, Damping, UsvModel, VehicleError};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -44,6 +50,19 @@ pub enum PlanError {
     },
     #[error("{stage}: a constraint cannot hold: {detail}")]
     Infeasible { stage: &'static str, detail: String },
+    #[error("step3: the {link} has no line of sight at step {k} after {rounds} rounds of lowering its range (C1_13): {why}")]
+    LineOfSight {
+        link: String,
+        k: usize,
+        rounds: usize,
+        why: String,
+    },
+    #[error("the acoustic chain breaks at window {window}, step {k}: {why}")]
+    Disconnected {
+        window: usize,
+        k: usize,
+        why: String,
+    },
     #[error(transparent)]
     Scp(#[from] crate::scp::ScpFailure),
 }
@@ -53,6 +72,34 @@ fn culprit_text(c: &Option<String>) -> String {
         Some(c) => format!("it becomes feasible without {c}, so that constraint cannot hold"),
         None => "no single constraint group is to blame: several conflict".into(),
     }
+}
+
+fn metric_params(s: &Scenario) -> MetricParams {
+    MetricParams {
+        dt: s.horizon.dt,
+        sonar_range: s.acoustic.sonar_range,
+        resolution: s.acoustic.resolution,
+        swath_width: s.auv.swath_width,
+    }
+}
+
+/// Metrics over every window of the mission.
+fn mission(windows: &[Window], floor: &Seafloor, s: &Scenario) -> Metrics {
+    let parts: Vec<(&Stage, &[Vec<crate::plan::Link>])> = windows
+        .iter()
+        .map(|w| (&w.final_, w.links.links.as_slice()))
+        .collect();
+    let times: Vec<[f64; 3]> = windows
+        .iter()
+        .map(|w| {
+            [
+                w.step1.solve_time_s,
+                w.graph.solve_time_s,
+                w.final_.solve_time_s,
+            ]
+        })
+        .collect();
+    mission_metrics(&parts, floor, &metric_params(s), &times)
 }
 
 /// Everything the planner needs besides the scenario: the floor and where things came from.
@@ -207,13 +254,62 @@ pub fn scenario_floor(
 
 /// Plan every window of the scenario.
 pub fn plan(input: &PlanInput) -> Result<Plan, PlanError> {
-    plan_with_progress(input, |_, _| {})
+    plan_with_progress(input, |_| {})
 }
 
-/// Plan every window, calling `progress(window, stage)` after each window's Step 1.
+/// What the planner reports as it goes (the CLI prints a line per event on stderr).
+#[derive(Debug, Clone, Copy)]
+pub enum Progress<'a> {
+    Step1 {
+        window: usize,
+        stage: &'a Stage,
+    },
+    Step2 {
+        window: usize,
+        graph: &'a Graph,
+    },
+    Step3 {
+        window: usize,
+        stage: &'a Stage,
+        los_rounds: usize,
+        out_of_band: usize,
+    },
+}
+
+/// A stage record of the plan from a solved team problem.
+fn stage_record(
+    problem: &TeamProblem,
+    out: &ScpOutcome<Trajectory>,
+    iterations: usize,
+    seconds: f64,
+) -> Stage {
+    let t = &out.iterate;
+    let terms = problem.terms(t);
+    Stage {
+        status: out.status.as_str().into(),
+        iterations,
+        solve_time_s: seconds,
+        objective: ObjectiveTerms {
+            energy: terms.energy,
+            depth: terms.depth,
+            height: terms.height,
+            usv: terms.usv,
+            spread: terms.spread,
+            band: terms.band_a2u + terms.band_a2a,
+            total: problem.objective(&terms),
+        },
+        max_violation: out.evaluation.max_violation,
+        usv: t.usv_path(),
+        auvs: t.auv_paths(problem.scenario.auv.min_heading_speed),
+        scp: out.trace.clone(),
+    }
+}
+
+/// Plan every window (Algorithm 1): Step 1, Step 2, Step 3 with its line-of-sight loop, then
+/// the next window from the last state. `progress` hears of each step as it ends.
 pub fn plan_with_progress(
     input: &PlanInput,
-    mut progress: impl FnMut(usize, &Stage),
+    mut progress: impl FnMut(Progress),
 ) -> Result<Plan, PlanError> {
     let s = input.scenario;
     let floor = input.floor;
@@ -232,41 +328,65 @@ pub fn plan_with_progress(
     let mut heading = None;
     for w in 0..s.windows {
         check_start(s, floor, &start, w)?;
+        // Step 1 (P2), Algorithm 1 line 9
         let clock = Instant::now();
-        let mut step1 = TeamProblem::new(s, floor, auv, usv, start.clone());
-        let out = crate::step1::solve(&mut step1, heading)?;
-        let t = &out.iterate;
-        let terms = step1.terms(t);
-        let stage = Stage {
-            status: out.status.as_str().into(),
-            iterations: out.trace.len(),
-            solve_time_s: clock.elapsed().as_secs_f64(),
-            objective: ObjectiveTerms {
-                energy: terms.energy,
-                depth: terms.depth,
-                height: terms.height,
-                usv: terms.usv,
-                total: step1.objective(&terms),
-            },
-            max_violation: out.evaluation.max_violation,
-            usv: t.usv_path(),
-            auvs: t.auv_paths(s.auv.min_heading_speed),
-            scp: out.trace.clone(),
-        };
+        let mut p2 = TeamProblem::new(s, floor, auv, usv, start.clone());
+        let out1 = crate::step1::solve(&mut p2, heading)?;
+        let step1 = stage_record(&p2, &out1, out1.trace.len(), clock.elapsed().as_secs_f64());
+        progress(Progress::Step1 {
+            window: w,
+            stage: &step1,
+        });
+        // Step 2 (P3, P4), lines 13–16
+        let graph = crate::step2::solve(&out1.iterate);
+        progress(Progress::Step2 {
+            window: w,
+            graph: &graph,
+        });
+        // Step 3 (P5) and line of sight, lines 17–22
+        let clock = Instant::now();
+        let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
+        let mut p5 = TeamProblem::new(s, floor, auv, usv, start.clone()).with_links(links);
+        let out3 = crate::step3::solve(&mut p5, &out1.iterate)?;
+        let final_ = stage_record(
+            &p5,
+            &out3.outcome,
+            out3.iterations,
+            clock.elapsed().as_secs_f64(),
+        );
+        progress(Progress::Step3 {
+            window: w,
+            stage: &final_,
+            los_rounds: out3.los_rounds,
+            out_of_band: out3.out_of_band.len(),
+        });
+        let t = &out3.outcome.iterate;
         let last = t.usv_u.last().copied().unwrap_or([0.0; 2]);
         if last[0].hypot(last[1]) > 1e-6 {
             heading = Some(last[1].atan2(last[0]));
         }
         start = t.end();
-        progress(w, &stage);
+        let report = LinkReport {
+            links: out3.links.links,
+            bands: out3.links.bands,
+            out_of_band: out3.out_of_band,
+            los_rounds: out3.los_rounds,
+        };
+        let times = [step1.solve_time_s, graph.solve_time_s, final_.solve_time_s];
+        crate::step3::connected(t, floor, s).map_err(|(k, why)| PlanError::Disconnected {
+            window: w,
+            k,
+            why,
+        })?;
+        let metrics = window_metrics(&final_, &report.links, floor, &metric_params(s), times);
         windows.push(Window {
             index: w,
             start_time: w as f64 * s.horizon.steps as f64 * s.horizon.dt,
-            final_: stage.clone(),
-            step1: stage,
-            graph: Default::default(),
-            links: Default::default(),
-            metrics: Default::default(),
+            step1,
+            graph,
+            final_,
+            links: report,
+            metrics,
         });
     }
     let (z_min, z_max) = floor.z_range();
@@ -290,8 +410,8 @@ pub fn plan_with_progress(
             fingerprint: floor.fingerprint(),
         },
         model: ModelRecord { damping, auv, usv },
+        metrics: mission(&windows, floor, s),
         initial,
         windows,
-        metrics: Default::default(),
     })
 }

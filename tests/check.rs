@@ -144,6 +144,7 @@ fn objective(s: &Scenario, floor: &Seafloor, usv: &UsvPath, auvs: &[AuvPath]) ->
         height,
         usv: usv_term,
         total: s.weights.w1 * energy + s.weights.w2 * of1_2 + w_usv * usv_term,
+        ..ObjectiveTerms::default()
     }
 }
 

@@ -2,7 +2,7 @@
 //! calls the planner; the checker itself never does.)
 
 use shoal::check::check_plan;
-use shoal::planner::{plan, PlanInput};
+use shoal::planner::{plan, scenario_floor, PlanInput};
 use shoal::scenario::Scenario;
 use shoal::seafloor::Seafloor;
 
@@ -134,7 +134,7 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
 mod random {
     use super::*;
     use proptest::prelude::*;
-    use shoal::planner::{scenario_floor, PlanError};
+    use shoal::planner::PlanError;
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
@@ -184,4 +184,44 @@ mod random {
             }
         }
     }
+}
+
+/// The paper's two experiments (Section V: 5 and 7 AUVs, K = 20, δ = 100 s, d_s = 150 m) over
+/// several windows of Algorithm 1 on the default synthetic floor: every window runs Steps 1–3,
+/// the plan passes `check` (which includes the acoustic chain at every step), and the reported
+/// metrics say the team stayed connected at every step.
+fn paper_experiment(auvs: usize, windows: usize) {
+    let mut s = Scenario {
+        windows,
+        ..Scenario::default()
+    };
+    s.team.auvs = auvs;
+    let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
+    let input = PlanInput {
+        scenario: &s,
+        floor: &f,
+        scenario_source: "test".into(),
+        overrides: vec![],
+        seafloor_source: source,
+    };
+    let p = plan(&input).expect("the planner plans");
+    let r = check_plan(&p, &f);
+    assert!(r.passed(), "\n{}", r.table());
+    assert_eq!(p.windows.len(), windows);
+    for w in &p.windows {
+        assert_eq!(w.graph.a2a.len(), s.horizon.steps + 1);
+        assert!(w.graph.exact);
+        assert!(w.links.los_rounds >= 1);
+    }
+    assert_eq!(p.metrics.connected_fraction, 1.0);
+}
+
+#[test]
+fn paper_experiment_five_auvs_three_windows() {
+    paper_experiment(5, 3);
+}
+
+#[test]
+fn paper_experiment_seven_auvs_two_windows() {
+    paper_experiment(7, 2);
 }

@@ -799,6 +799,7 @@ impl Checker<'_> {
                 height,
                 usv,
                 total,
+                ..ObjectiveTerms::default()
             };
             let stored = st.objective;
             for (name, a, b, scale) in [

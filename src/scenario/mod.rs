@@ -65,6 +65,12 @@ pub struct Acoustic {
     pub max_range: f64,
     /// r, resolution of the segment / line-of-sight sampling 𝓛_r, metres.
     pub resolution: f64,
+    /// How much a link's upper band bound is lowered each time it loses line of sight
+    /// (Algorithm 1, line 20: d_s,ij = d_s − ε), metres.
+    pub los_shrink: f64,
+    /// Largest number of P5 solves per window in the line-of-sight loop (Algorithm 1, lines
+    /// 17–22).
+    pub los_rounds: usize,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -89,6 +95,9 @@ pub struct Auv {
     pub floor_clearance: f64,
     /// C1_4: AUVs stay at least this far below the surface (z ≤ −surface_clearance), metres.
     pub surface_clearance: f64,
+    /// Width of the seafloor swath each AUV's sensor covers (side-scan / multibeam), metres;
+    /// used for the explored-area metric only.
+    pub swath_width: f64,
     pub discretisation: Discretisation,
     /// m, rigid-body mass, kg.
     pub mass: f64,
@@ -251,6 +260,8 @@ impl Default for Acoustic {
             band_tolerance: 30.0, // paper gives no d_t; 20 % of d_s
             max_range: 400.0, // paper gives no d_max; a few hundred metres (mid-frequency modems)
             resolution: 5.0,  // 𝓛_r: 5 m, a fifth of the synthetic grid cell
+            los_shrink: 15.0, // ours: half of d_t per round
+            los_rounds: 5,
         }
     }
 }
@@ -268,6 +279,7 @@ impl Default for Auv {
             min_heading_speed: 0.1,  // heading undefined below 0.1 m/s horizontal speed
             floor_clearance: 5.0,    // ε; REMUS survey altitude is typically 3–10 m
             surface_clearance: 2.0,  // stay 2 m below the surface (C1_4)
+            swath_width: 50.0,       // ours: a side-scan swath of ~10× a 5 m altitude
             discretisation: Discretisation::Zoh,
             mass: 30.51,              // Prestero Table 4.1: m = 30.51 kg
             added_mass_surge: -0.93,  // X_u̇ = −9.30e−1 kg
@@ -300,8 +312,8 @@ impl Default for Weights {
             w1: 1.0e3,
             w2: 1.0,
             of1_2: DepthObjective::Height,
-            w3: 1.0,
-            w4: 1.0,
+            w3: 1.0e3, // "heavily penalised" band slacks: 1 m off band weighs like 1 (m/s²)² of input
+            w4: 1.0e3,
             w5: 1.0e-4,
             w6: 0.0,
             w7: 0.0,

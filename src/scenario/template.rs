@@ -43,6 +43,14 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "acoustic.resolution" => {
             "r: sampling step of the segment / line-of-sight query 𝓛_r of C1_13, metres. > 0."
         }
+        "acoustic.los_shrink" => {
+            "How much a link that lost line of sight has its band's upper end lowered per round, \
+             metres (Algorithm 1, line 20: d_s,ij = d_s − ε; ours: d_t / 2). > 0."
+        }
+        "acoustic.los_rounds" => {
+            "Largest number of P5 solves per window in the line-of-sight loop (Algorithm 1, \
+             lines 17–22). 1 to 100."
+        }
         "auv" => {
             "AUV limits, and the coefficients of the simplified dynamics, eqs. (5)–(8): \
              E' = diag{γ_vx/(m − γ_v̇x), γ_vz/(m − γ_v̇z), γ_ωz/J_z}. Defaults: REMUS 100 \
@@ -59,6 +67,10 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "auv.floor_clearance" => {
             "ε of C2_2: clearance kept above the seafloor, z ≥ Z(x, y) + ε, metres. ≥ 0."
+        }
+        "auv.swath_width" => {
+            "Width of the seafloor swath one AUV's sensor covers, metres (ours; for the \
+             explored-area metric only). > 0."
         }
         "auv.surface_clearance" => {
             "C1_4: AUVs stay under water, z ≤ −surface_clearance, metres. ≥ 0."
@@ -112,8 +124,14 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              floor (ours, default: stays near the floor without pulling AUVs sideways into \
              valleys); \"depth\" = z, the paper's 𝔷X taken literally."
         }
-        "weights.w3" => "w3 · OF1_3 (Step 3): A2U link length off its band near d_s, per metre.",
-        "weights.w4" => "w4 · OF1_4 (Step 3): A2A link length off its band near d_s, per metre.",
+        "weights.w3" => {
+            "w3 · OF1_3 (Step 3): A2U link length outside its band [d_s − d_t, d_s], per metre \
+             (the penalty on C5_2's slack; ours: 10³, heavily penalised)."
+        }
+        "weights.w4" => {
+            "w4 · OF1_4 (Step 3): A2A link length outside its band [d_s − d_t, d_s], per metre \
+             (the penalty on C5_3's slack; ours: 10³, heavily penalised)."
+        }
         "weights.w5" => "w5 · OF1_5 (Step 3): spread of non-adjacent AUVs (rewarded), per m².",
         "weights.w6" => "w6 · OF1_6: number of A2A edges (fixed by Step 2, so a constant).",
         "weights.w7" => "w7 · OF1_7: number of A2U edges (fixed by Step 2, so a constant).",

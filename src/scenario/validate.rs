@@ -172,6 +172,17 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         &["acoustic.sonar_range"],
     );
     c.positive(
+        "acoustic.los_shrink",
+        a.los_shrink,
+        "of metres (how much a blocked link's range is lowered per round)",
+    );
+    c.int(
+        "acoustic.los_rounds",
+        a.los_rounds,
+        (1..=100).contains(&a.los_rounds),
+        "must be an integer from 1 to 100 (P5 solves per window in the line-of-sight loop)",
+    );
+    c.positive(
         "acoustic.resolution",
         a.resolution,
         "of metres (r, step of the line-of-sight sampling 𝓛_r)",
@@ -204,6 +215,11 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         "auv.surface_clearance",
         v.surface_clearance,
         "metres (C1_4)",
+    );
+    c.positive(
+        "auv.swath_width",
+        v.swath_width,
+        "of metres (sensor swath, explored-area metric)",
     );
     c.positive("auv.mass", v.mass, "of kg (m)");
     c.non_positive("auv.added_mass_surge", v.added_mass_surge, "kg (γ_v̇x, X_u̇)");

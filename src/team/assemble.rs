@@ -20,7 +20,7 @@ use clarabel::solver::SupportedConeT::{self, NonnegativeConeT, SecondOrderConeT,
 /// b of a padding row (0·x − ν + s = 1): always satisfied, never binding.
 const INACTIVE: f64 = 1.0;
 
-pub struct Assembly {
+pub(crate) struct Assembly {
     pub p: Triplets,
     pub q: Vec<f64>,
     pub a: Triplets,
@@ -34,7 +34,7 @@ pub struct Assembly {
 }
 
 impl Assembly {
-    fn row(&mut self, b: f64) -> usize {
+    pub(crate) fn row(&mut self, b: f64) -> usize {
         self.b.push(b);
         self.b.len() - 1
     }
@@ -124,6 +124,8 @@ impl TeamProblem<'_> {
             }
         }
 
+        self.p5_objective(r, &mut m); // Step 3 only
+
         // ---- zero cone: dynamics C1_1 ----
         let first = m.b.len();
         for k in 0..kk {
@@ -206,6 +208,7 @@ impl TeamProblem<'_> {
         }
         self.floor_rows(r, &mut m)?;
         self.heading_rows(r, &mut m);
+        self.p5_rows(r, &mut m); // Step 3 only
         for n in 0..nn {
             for k in 1..=kk {
                 for col in [l.floor_slack(n, k), l.heading_slack(n, k)] {
@@ -263,6 +266,7 @@ impl TeamProblem<'_> {
                 m.cones.push(SecondOrderConeT(3));
             }
         }
+        self.p5_cones(&mut m); // Step 3 only
         Ok(m)
     }
 

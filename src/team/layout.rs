@@ -3,7 +3,9 @@
 //!
 //! Per window: USV positions P_USV[1..=K] and inputs U_USV[0..K), then one block per AUV holding
 //! P_n[1..=K], V_n[1..=K], U_n[0..K), the floor slacks ν_f[1..=K] and heading slacks ν_h[1..=K].
-//! Step k = 0 is the window's fixed start and is not a variable.
+//! Step k = 0 is the window's fixed start and is not a variable. P5 (Step 3) appends, per step
+//! k = 1..=K and planned link l, the slacks of its band: σ (above the upper end, C5_2/C5_3's
+//! "< d_s") and ν (below the lower end, "> d_s − d_t").
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -11,13 +13,27 @@ pub struct Layout {
     pub k: usize,
     /// N, number of AUVs.
     pub n: usize,
+    /// Planned acoustic links per step (0 for P2; N for P5: one A2U link and N − 1 A2A edges).
+    pub links: usize,
 }
 
 impl Layout {
     const AUV_BLOCK: usize = 11;
 
     pub fn variables(&self) -> usize {
+        self.link_base() + 2 * self.links * self.k
+    }
+    fn link_base(&self) -> usize {
         4 * self.k + Self::AUV_BLOCK * self.k * self.n
+    }
+    /// σ[l][k]: how far link l may exceed the upper end of its band at step k, k = 1..=K.
+    pub fn band_upper_slack(&self, l: usize, k: usize) -> usize {
+        debug_assert!(l < self.links && k >= 1 && k <= self.k);
+        self.link_base() + 2 * (l * self.k + (k - 1))
+    }
+    /// ν[l][k]: how far link l may fall below the lower end of its band at step k.
+    pub fn band_lower_slack(&self, l: usize, k: usize) -> usize {
+        self.band_upper_slack(l, k) + 1
     }
     /// P_USV[k], k = 1..=K (2 entries).
     pub fn usv_p(&self, k: usize) -> usize {
@@ -67,8 +83,15 @@ mod tests {
     /// Every index is used exactly once, for sizes including the edge cases K = 1 and N = 1.
     #[test]
     fn indices_tile_the_variable_vector() {
-        for (k, n) in [(1, 1), (1, 3), (2, 1), (20, 5), (7, 12)] {
-            let l = Layout { k, n };
+        for (k, n, links) in [
+            (1, 1, 0),
+            (1, 3, 3),
+            (2, 1, 1),
+            (20, 5, 0),
+            (20, 5, 5),
+            (7, 12, 12),
+        ] {
+            let l = Layout { k, n, links };
             let mut seen = vec![0u8; l.variables()];
             let mut mark = |i: usize, w: usize| (i..i + w).for_each(|j| seen[j] += 1);
             for s in 1..=k {
@@ -88,7 +111,13 @@ mod tests {
                     mark(l.auv_u(a, s), 3);
                 }
             }
-            assert!(seen.iter().all(|&c| c == 1), "K={k} N={n}");
+            for li in 0..links {
+                for s in 1..=k {
+                    mark(l.band_upper_slack(li, s), 1);
+                    mark(l.band_lower_slack(li, s), 1);
+                }
+            }
+            assert!(seen.iter().all(|&c| c == 1), "K={k} N={n} links={links}");
         }
     }
 }

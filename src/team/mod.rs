@@ -11,7 +11,7 @@
 //! - C2_3/C2_4 are replaced by the linearised cone of `linearise::Heading`.
 //! - The whole is solved by SCvx (`scp`), with a trust region and a merit function.
 
-mod assemble;
+pub(crate) mod assemble;
 mod layout;
 
 pub use layout::Layout;
@@ -22,6 +22,7 @@ use crate::planner::PlanError;
 use crate::scenario::{DepthObjective, Scenario, UsvObjective};
 use crate::scp::{self, Evaluation, ScpOutcome, ScpProblem};
 use crate::seafloor::Seafloor;
+use crate::step3::LinkSet;
 use crate::trajectory::{Start, Trajectory};
 use crate::vehicle::{AuvModel, UsvModel};
 use assemble::h2;
@@ -35,20 +36,22 @@ const GUESS_HEIGHT: f64 = 5.0;
 
 /// P2 for one window.
 pub struct TeamProblem<'a> {
-    scenario: &'a Scenario,
-    floor: &'a Seafloor,
+    pub(crate) scenario: &'a Scenario,
+    pub(crate) floor: &'a Seafloor,
     auv: AuvModel,
     usv: UsvModel,
     start: Start,
-    layout: Layout,
+    pub(crate) layout: Layout,
     heading: Heading,
     /// The heading cone of the convex model, tightened by `HEADING_MARGIN`.
     heading_model: Heading,
+    /// P5's planned links and their bands (None for P2).
+    pub(crate) links: Option<LinkSet>,
     solver: Option<ConicSolver>,
 }
 
-/// The unweighted objective terms of P2 for a trajectory.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The unweighted objective terms for a trajectory (P2's, plus P5's when links are set).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Terms {
     pub energy: f64,
     /// Σ z.
@@ -56,6 +59,12 @@ pub struct Terms {
     /// Σ (z − Z(x, y)).
     pub height: f64,
     pub usv: f64,
+    /// OF1_5: Σ_k Σ ‖P_i − P_j‖² over pairs not joined by an A2A edge at k, m².
+    pub spread: f64,
+    /// OF1_3 as C5_2's slack: Σ_k metres by which the A2U link is outside its band.
+    pub band_a2u: f64,
+    /// OF1_4 as C5_3's slack: Σ_k Σ metres by which A2A edges are outside their bands.
+    pub band_a2a: f64,
 }
 
 impl<'a> TeamProblem<'a> {
@@ -69,6 +78,7 @@ impl<'a> TeamProblem<'a> {
         let layout = Layout {
             k: scenario.horizon.steps,
             n: scenario.team.auvs,
+            links: 0,
         };
         TeamProblem {
             scenario,
@@ -82,8 +92,25 @@ impl<'a> TeamProblem<'a> {
                 (scenario.auv.max_heading_rate - HEADING_MARGIN / scenario.horizon.dt).max(0.0),
                 scenario.horizon.dt,
             ),
+            links: None,
             solver: None,
         }
+    }
+
+    /// The same window with P5's planned links (Step 3): adds the band slacks to the layout.
+    pub fn with_links(mut self, links: LinkSet) -> TeamProblem<'a> {
+        self.layout.links = links.per_step();
+        self.links = Some(links);
+        self.solver = None;
+        self
+    }
+
+    pub fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    pub fn start(&self) -> &Start {
+        &self.start
     }
 
     /// The first reference. The USV heads out at full speed (towards the destination, slower
@@ -174,6 +201,10 @@ impl<'a> TeamProblem<'a> {
             .flat_map(|p| p[1..].iter())
             .map(|p| p[2] - self.floor_linearisation(*p).0)
             .sum();
+        let (spread, band_a2u, band_a2a) = match &self.links {
+            Some(links) => links.terms(t),
+            None => (0.0, 0.0, 0.0),
+        };
         let pk = t.usv_p[self.layout.k];
         let usv = match self.scenario.usv.objective {
             UsvObjective::Away => {
@@ -189,6 +220,9 @@ impl<'a> TeamProblem<'a> {
             depth,
             height,
             usv,
+            spread,
+            band_a2u,
+            band_a2a,
         }
     }
 
@@ -197,8 +231,9 @@ impl<'a> TeamProblem<'a> {
         self.weighted(t).iter().sum()
     }
 
-    /// The weighted terms of J: w1·OF1_1, w2·OF1_2, the USV term.
-    fn weighted(&self, t: &Terms) -> [f64; 3] {
+    /// The weighted terms of J: w1·OF1_1, w2·OF1_2, the USV term, −w5·OF1_5, w3·OF1_3,
+    /// w4·OF1_4 (the last three zero without links).
+    fn weighted(&self, t: &Terms) -> [f64; 6] {
         let w = &self.scenario.weights;
         let usv = match self.scenario.usv.objective {
             UsvObjective::Away => -w.w8 * t.usv,
@@ -208,7 +243,14 @@ impl<'a> TeamProblem<'a> {
             DepthObjective::Height => t.height,
             DepthObjective::Depth => t.depth,
         };
-        [w.w1 * t.energy, w.w2 * of1_2, usv]
+        [
+            w.w1 * t.energy,
+            w.w2 * of1_2,
+            usv,
+            -w.w5 * t.spread,
+            w.w3 * t.band_a2u,
+            w.w4 * t.band_a2a,
+        ]
     }
 
     /// Worst floor-clearance violation (metres) of the segment k−1 → k of AUV n, sampled by the

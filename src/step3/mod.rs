@@ -1,0 +1,192 @@
+//! Step 3 of Section IV-A: problem P5 and the line-of-sight loop (Algorithm 1, lines 17–22).
+//!
+//!   OF5:  min OF2 + Σ_k w5·OF1_5 (OF1_5 rewarded: non-adjacent AUVs spread out)
+//!   s.t.  C5_1 = Step 1's constraints (dynamics, ranges, speeds, floor along segments, heading)
+//!         C5_2, C5_3: every planned link's length in its band [d_s − d_t, d_s]
+//!
+//! P5 is the team problem of `team` with Step 2's links added (`assemble`), solved by the same
+//! SCvx loop, starting from Step 1's plan. Departures from the paper:
+//! - The bands are on lengths in metres (the paper writes a squared norm beside d_s).
+//! - The bands are soft: each end has a slack penalised by w3 (A2U) or w4 (A2A) per metre, the
+//!   paper's OF1_3/OF1_4. AUVs depart from random points at rest, and two picked as path
+//!   neighbours can start 250 m apart; a hard band would make P5 infeasible. Every (step, link)
+//!   left outside its band is reported in the plan (`links.out_of_band`). The hard requirement,
+//!   that every AUV reaches the USV through links in range and in line of sight at every step,
+//!   is verified after the loop (`planner`) and by `shoal check`.
+//! - Line of sight (C1_13): after each P5 solve every planned link is tested with the seafloor's
+//!   𝓛_r query; a blocked link has its band's upper end lowered by `acoustic.los_shrink` (and
+//!   the lower end with it when the band would close) and P5 is solved again from the last
+//!   plan, at most `acoustic.los_rounds` times.
+
+mod assemble;
+pub mod links;
+
+pub use links::LinkSet;
+
+use crate::plan::{Band, Link, OutOfBand};
+use crate::planner::PlanError;
+use crate::scp::ScpOutcome;
+use crate::team::TeamProblem;
+use crate::trajectory::Trajectory;
+
+/// What Step 3 returns for a window.
+pub struct Step3 {
+    pub outcome: ScpOutcome<Trajectory>,
+    /// The links with the bands of the last round.
+    pub links: LinkSet,
+    pub los_rounds: usize,
+    pub out_of_band: Vec<OutOfBand>,
+    /// SCP iterations summed over the rounds.
+    pub iterations: usize,
+}
+
+/// Solve P5 for `problem` (built with links) from Step 1's plan, with the line-of-sight loop.
+pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, PlanError> {
+    let s = problem.scenario;
+    let (r, shrink) = (s.acoustic.resolution, s.acoustic.los_shrink);
+    let mut reference = step1.clone();
+    let mut iterations = 0;
+    let mut trace = Vec::new();
+    for round in 1..=s.acoustic.los_rounds {
+        let mut out = problem.solve(reference)?;
+        iterations += out.trace.len();
+        trace.append(&mut out.trace);
+        let set = problem.links.as_mut().expect("P5 has links");
+        let blocked = blocked_links(problem.floor, set, &out.iterate, r);
+        if blocked.is_empty() {
+            out.trace = trace;
+            let links = set.clone();
+            let out_of_band = out_of_band(&links, &out.iterate);
+            return Ok(Step3 {
+                outcome: out,
+                links,
+                los_rounds: round,
+                out_of_band,
+                iterations,
+            });
+        }
+        if round == s.acoustic.los_rounds {
+            let (k, li, why) = &blocked[0];
+            return Err(PlanError::LineOfSight {
+                link: describe(set.links[*k][*li]),
+                k: *k,
+                rounds: round,
+                why: why.clone(),
+            });
+        }
+        for (k, li, _) in &blocked {
+            let band = &mut set.bands[*k][*li];
+            band.hi = (band.hi - shrink).max(0.0);
+            band.lo = band.lo.min(band.hi);
+        }
+        reference = out.iterate;
+    }
+    unreachable!("los_rounds ≥ 1 (scenario validation)")
+}
+
+/// (k, link index, why) of every planned link at k = 1..=K without line of sight.
+fn blocked_links(
+    floor: &crate::seafloor::Seafloor,
+    set: &LinkSet,
+    t: &Trajectory,
+    resolution: f64,
+) -> Vec<(usize, usize, String)> {
+    let mut out = Vec::new();
+    for k in 1..set.links.len() {
+        for (li, &link) in set.links[k].iter().enumerate() {
+            let (a, b) = links::ends(t, k, link);
+            match floor.segment_clearance(a, b, resolution) {
+                Ok(c) if c.min_clearance >= 0.0 => {}
+                Ok(c) => out.push((
+                    k,
+                    li,
+                    format!(
+                        "the floor rises {:.1} m above the line at ({:.1}, {:.1}, {:.1})",
+                        -c.min_clearance, c.at[0], c.at[1], c.at[2]
+                    ),
+                )),
+                Err(e) => out.push((k, li, e.to_string())),
+            }
+        }
+    }
+    out
+}
+
+/// Every (step, link) of k = 1..=K whose length is outside its band by more than 1 mm.
+fn out_of_band(set: &LinkSet, t: &Trajectory) -> Vec<OutOfBand> {
+    let mut out = Vec::new();
+    for k in 1..set.links.len() {
+        for (&link, &band) in set.links[k].iter().zip(&set.bands[k]) {
+            let length = links::length(t, k, link);
+            if links::outside(length, band) > 1e-3 {
+                out.push(OutOfBand {
+                    k,
+                    link,
+                    length,
+                    band: Band { ..band },
+                });
+            }
+        }
+    }
+    out
+}
+
+/// "A2U link AUV 2–USV" or "A2A edge AUV 1–AUV 4".
+pub fn describe(link: Link) -> String {
+    match link.b {
+        None => format!("A2U link AUV {}–USV", link.a),
+        Some(b) => format!("A2A edge AUV {}–AUV {b}", link.a),
+    }
+}
+
+/// The hard requirement behind the chain: at every step k = 0..=K every AUV reaches the USV
+/// through links (any pair) no longer than d_s with line of sight (𝓛_r, clearance ≥ 0).
+/// Err((k, why)) names the first step and an AUV cut off.
+pub fn connected(
+    t: &Trajectory,
+    floor: &crate::seafloor::Seafloor,
+    s: &crate::scenario::Scenario,
+) -> Result<(), (usize, String)> {
+    let (ds, r) = (s.acoustic.sonar_range, s.acoustic.resolution);
+    let n = t.auv_p.len();
+    for k in 0..t.usv_p.len() {
+        // node n is the USV
+        let at = |i: usize| {
+            if i == n {
+                [t.usv_p[k][0], t.usv_p[k][1], 0.0]
+            } else {
+                t.auv_p[i][k]
+            }
+        };
+        let linked = |i: usize, j: usize| {
+            let (a, b) = (at(i), at(j));
+            let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+            d <= ds
+                && floor
+                    .segment_clearance(a, b, r)
+                    .is_ok_and(|c| c.min_clearance >= 0.0)
+        };
+        let mut reached = vec![false; n + 1];
+        reached[n] = true;
+        let mut queue = vec![n];
+        while let Some(i) = queue.pop() {
+            for j in 0..n {
+                if !reached[j] && linked(i, j) {
+                    reached[j] = true;
+                    queue.push(j);
+                }
+            }
+        }
+        if let Some(cut) = reached.iter().position(|&x| !x) {
+            return Err((
+                k,
+                format!(
+                    "AUV {cut} at ({:.1}, {:.1}, {:.1}) reaches the USV through no chain of links \
+                     within d_s = {ds} m with line of sight",
+                    t.auv_p[cut][k][0], t.auv_p[cut][k][1], t.auv_p[cut][k][2]
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
