@@ -1,11 +1,23 @@
 //! Independent verification of a plan (`shoal check plan.json`).
 //!
 //! Every constraint of the plan is re-evaluated from the plan file and the seafloor alone. The
-//! checker shares no code with the optimiser's constraint builders (`step1`, `linearise`, `scp`,
-//! `conic`, `vehicle`): it has its own AUV model ([`model`], RK4 on the continuous dynamics or
-//! eq. (8) literally), its own geometry, its own objective. It uses only the plan data types
-//! ([`crate::plan`]), the scenario parameters recorded in the plan, and the floor's
-//! elevation queries ([`crate::seafloor`]).
+//! checker shares no code with the optimiser's constraint builders (`step1`, `team`, `graph`,
+//! `linearise`, `scp`, `conic`, `vehicle`): it has its own AUV model ([`model`], RK4 on the
+//! continuous dynamics or eq. (8) literally), its own geometry, its own objective, its own graph
+//! tests. It uses only the plan data types ([`crate::plan`]), the scenario parameters recorded
+//! in the plan, and the floor's elevation and segment queries ([`crate::seafloor`]).
+//!
+//! # Which stage is checked
+//!
+//! A window records two stages: `step1` (P2) and `final` (Step 3, P5 with its line-of-sight
+//! rounds), the plan the team executes. **`final` is the plan**: every family below runs on it,
+//! and window w + 1's stages must start where window w's `final` stage ends. Step 1's stage is
+//! checked too, by the same families (structure, dynamics, speeds, C1_4, C1_5/C1_6, floor and
+//! obstacles, heading rate, recorded fields, window chain, objective), because Step 2 builds its
+//! graph on Step 1's positions; it costs one more pass over the same arrays. Messages name the
+//! stage: "AUV 2" is the final stage's, "step1 AUV 2" Step 1's. The objective of `final` is
+//! checked term by term (energy, depth, height, usv) but not its total, which also weighs P5's
+//! own terms; Step 1's total is checked.
 //!
 //! # Families and margins
 //!
@@ -15,7 +27,35 @@
 //! recorded values) have margin −|error|. A family passes when its worst margin is
 //! ≥ −tolerance. A check that cannot be evaluated (non-finite number, point outside the grid)
 //! counts as margin −∞, so it fails its family. Array entries that are missing (a truncated
-//! plan) are a "structure" failure and skipped by the other families.
+//! plan) or indices that name no vehicle are a "structure" failure and skipped by the other
+//! families.
+//!
+//! # Steps 2 and 3 (the graph families)
+//!
+//! At every step k = 0..=K of every window (module `graph`):
+//!
+//! * **A2A Hamiltonian path**: `graph.a2a[k]` is N − 1 distinct edges between distinct AUVs
+//!   < N, every AUV of degree ≤ 2, connected (hence no cycle); and `links.links[k]` is the A2U
+//!   link of `graph.a2u[k]` followed by exactly those edges. Counted in problems, tolerance 0.
+//! * **A2U link**: `graph.a2u[k]` is an AUV nearest the USV (at z = 0) in Step 1's positions
+//!   (P3); margin = nearest distance − its distance, tolerance [`A2U_TIE_TOL`].
+//! * **link bands within [0, d_s]**: every recorded band has 0 ≤ lo ≤ hi ≤ d_s, tolerance
+//!   [`BAND_LIMIT_TOL`].
+//! * **links in band**: for k = 1..=K (k = 0 is the fixed start) every planned link's length in
+//!   the final positions is in its band within [`BAND_TOL`], or the (k, link) is listed in
+//!   `out_of_band`; every `out_of_band` entry names a planned link with its length (within
+//!   [`OUT_OF_BAND_REL_TOL`] relative to max(length, 1 m)) and band.
+//! * **acoustic connectivity (range + line of sight)**: over the USV and the AUVs (final
+//!   positions), an edge joins two nodes within d_s + [`LENGTH_TOL`] whose segment has line of
+//!   sight (every sample of 𝓛_r at or above the floor within [`LOS_TOL`]); every AUV must reach
+//!   the USV. Margin = −(AUVs cut off), tolerance 0: the hard requirement, at 100 % of steps.
+//! * **planned chain line of sight**: for k = 1..=K every link of `links.links[k]` has line of
+//!   sight; margin = the segment's clearance, tolerance [`LOS_TOL`].
+//!
+//! A plan without Step 2 data (every `graph.a2u` empty, as written by a planner that runs only
+//! Step 1) skips these six: each shows PASS with 0 checks and "no Step 2 graph in this plan".
+//! A window with a graph but an empty link report fails "links in band" and "planned chain line
+//! of sight".
 //!
 //! # Tolerances
 //!
@@ -33,8 +73,16 @@
 //! | recorded surge speed / heading | [`DERIVED_TOL`] = 1e-9 (m/s, rad) | pure arithmetic |
 //! | window chain | [`CHAIN_TOL`] = 1e-9 (m, m/s) | a copy |
 //! | objective | [`OBJECTIVE_REL_TOL`] = 1e-6 relative | |
+//! | A2A Hamiltonian path | 0 problems | combinatorial facts |
+//! | A2U link | [`A2U_TIE_TOL`] = 1e-9 m | ties between equally near AUVs |
+//! | link bands within [0, d_s] | [`BAND_LIMIT_TOL`] = 1e-9 m | recorded numbers |
+//! | links in band | [`BAND_TOL`] = 1e-3 m | nonconvex (SCP), as the planner's 1 mm report threshold |
+//! | acoustic connectivity | 0 AUVs cut off; range [`LENGTH_TOL`], line of sight [`LOS_TOL`] | the hard requirement |
+//! | planned chain line of sight | [`LOS_TOL`] = 1e-6 m | |
 
+mod graph;
 pub mod model;
+mod objective;
 mod run;
 
 use crate::plan::{ObjectiveTerms, Plan};
@@ -85,6 +133,24 @@ pub const CHAIN_TOL: f64 = 1e-9;
 /// alone changes them by ≈ 1e-14.
 pub const OBJECTIVE_REL_TOL: f64 = 1e-6;
 
+/// A2U link: the recorded AUV may be farther from the USV than the nearest one by this much,
+/// metres (P3 picks the nearest; two AUVs equally near within rounding are both right).
+pub const A2U_TIE_TOL: f64 = 1e-9;
+/// Link bands: 0 ≤ lo ≤ hi ≤ d_s within this, metres. The bands are recorded numbers computed
+/// from d_s and d_t (hi possibly lowered), so only rounding separates an honest band.
+pub const BAND_LIMIT_TOL: f64 = 1e-9;
+/// A planned link's final length outside its band by more than this (metres) must be listed in
+/// `out_of_band`. The band constraints C5_2/C5_3 are nonconvex and solved by SCP to
+/// scp.feasibility_tol (1e-3 by default), and the planner reports a link out of band when it is
+/// outside by more than 1 mm: the same number.
+pub const BAND_TOL: f64 = 1e-3;
+/// An `out_of_band` entry's recorded length against the length recomputed from the final
+/// positions, relative to max(length, 1 m): both are the same Euclidean norm.
+pub const OUT_OF_BAND_REL_TOL: f64 = 1e-6;
+/// Line of sight: a sample of 𝓛_r may be below the floor by at most this, metres (rounding in
+/// the bilinear floor; a link touching the floor has line of sight).
+pub const LOS_TOL: f64 = 1e-6;
+
 /// The result of one constraint family.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FamilyResult {
@@ -112,7 +178,10 @@ impl FamilyResult {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectiveCheck {
     pub window: usize,
+    /// "final" or "step1".
+    pub stage: &'static str,
     pub stored: ObjectiveTerms,
+    /// The final stage's total is not recomputed (NaN).
     pub recomputed: ObjectiveTerms,
 }
 
@@ -210,25 +279,33 @@ impl CheckReport {
             out.push('\n');
             let _ = writeln!(
                 out,
-                "{:<8} {:<7} {:>22} {:>22} {:>10}",
-                "window", "term", "stored", "recomputed", "rel. diff"
+                "{:<8} {:<6} {:<7} {:>22} {:>22} {:>10}",
+                "window", "stage", "term", "stored", "recomputed", "rel. diff"
             );
             for o in &self.objectives {
                 for (term, a, b) in [
                     ("energy", o.stored.energy, o.recomputed.energy),
                     ("depth", o.stored.depth, o.recomputed.depth),
+                    ("height", o.stored.height, o.recomputed.height),
                     ("usv", o.stored.usv, o.recomputed.usv),
                     ("total", o.stored.total, o.recomputed.total),
                 ] {
-                    let rel = (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
+                    let (recomputed, diff) = if term == "total" && o.stage == "final" {
+                        ("not checked".to_string(), "-".to_string())
+                    } else {
+                        let rel = (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
+                        let rel = if a == b { 0.0 } else { rel };
+                        (format!("{b:.12e}"), format!("{rel:.1e}"))
+                    };
                     let _ = writeln!(
                         out,
-                        "{:<8} {:<7} {:>22} {:>22} {:>10.1e}",
+                        "{:<8} {:<6} {:<7} {:>22} {:>22} {:>10}",
                         o.window,
+                        o.stage,
                         term,
                         format!("{a:.12e}"),
-                        format!("{b:.12e}"),
-                        if a == b { 0.0 } else { rel }
+                        recomputed,
+                        diff
                     );
                 }
             }

@@ -3,22 +3,22 @@
 
 use super::model::{AuvStep, Rates};
 use super::*;
-use crate::plan::{AuvPath, Stage, FORMAT};
-use crate::scenario::{DepthObjective, Scenario, UsvObjective};
+use crate::plan::{AuvPath, Stage, Window, FORMAT};
+use crate::scenario::Scenario;
 use std::f64::consts::PI;
 
 /// Accumulates the worst margin of one family.
-struct Family {
+pub(super) struct Family {
     name: &'static str,
     unit: &'static str,
     tolerance: f64,
     worst: f64,
-    where_: String,
-    checked: usize,
+    pub(super) where_: String,
+    pub(super) checked: usize,
 }
 
 impl Family {
-    fn new(name: &'static str, unit: &'static str, tolerance: f64) -> Family {
+    pub(super) fn new(name: &'static str, unit: &'static str, tolerance: f64) -> Family {
         Family {
             name,
             unit,
@@ -30,7 +30,7 @@ impl Family {
     }
 
     /// Record one check. A NaN margin (the check could not be evaluated) counts as −∞.
-    fn record(&mut self, margin: f64, at: impl FnOnce() -> String) {
+    pub(super) fn record(&mut self, margin: f64, at: impl FnOnce() -> String) {
         self.checked += 1;
         let m = if margin.is_nan() {
             f64::NEG_INFINITY
@@ -43,7 +43,12 @@ impl Family {
         }
     }
 
-    fn finish(self) -> FamilyResult {
+    /// Whether the checks so far pass.
+    pub(super) fn passing(&self) -> bool {
+        self.worst >= -self.tolerance
+    }
+
+    pub(super) fn finish(self) -> FamilyResult {
         FamilyResult {
             name: self.name,
             worst_margin: self.worst,
@@ -59,7 +64,7 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().map(|c| c * c).sum::<f64>().sqrt()
 }
 
-fn diff<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
+pub(super) fn diff<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
     norm(&std::array::from_fn::<f64, D, _>(|i| a[i] - b[i]))
 }
 
@@ -69,7 +74,7 @@ fn wrap(x: f64) -> f64 {
 }
 
 /// Relative difference of a and b against `scale` (0 when equal).
-fn rel(a: f64, b: f64, scale: f64) -> f64 {
+pub(super) fn rel(a: f64, b: f64, scale: f64) -> f64 {
     // both NaN: a term that cannot be evaluated (a point off the grid, reported by its own
     // family) on both sides
     if a == b || (a.is_nan() && b.is_nan()) {
@@ -83,7 +88,7 @@ fn all_finite<const D: usize>(v: &[[f64; D]]) -> bool {
     v.iter().flatten().all(|c| c.is_finite())
 }
 
-fn at(w: usize, k: usize, who: &str) -> String {
+pub(super) fn at(w: usize, k: usize, who: &str) -> String {
     format!("window {w}, k = {k}, {who}")
 }
 
@@ -91,12 +96,27 @@ fn seg(w: usize, k: usize, who: &str) -> String {
     format!("window {w}, k = {}→{k}, {who}", k - 1)
 }
 
-struct Checker<'a> {
-    plan: &'a Plan,
-    s: &'a Scenario,
-    floor: &'a Seafloor,
+/// The stages a window records, the final stage (the plan the team executes) first, each with
+/// the prefix that names it in messages: "" for the final stage, "step1 " for Step 1's.
+fn stages(win: &Window) -> [(&'static str, &Stage); 2] {
+    [("", &win.final_), ("step1 ", &win.step1)]
+}
+
+/// "final" or "step1" from a stage prefix.
+fn stage_name(pre: &str) -> &'static str {
+    if pre.is_empty() {
+        "final"
+    } else {
+        "step1"
+    }
+}
+
+pub(super) struct Checker<'a> {
+    pub(super) plan: &'a Plan,
+    pub(super) s: &'a Scenario,
+    pub(super) floor: &'a Seafloor,
     /// K.
-    k: usize,
+    pub(super) k: usize,
     /// δ.
     dt: f64,
     problems: Vec<String>,
@@ -137,6 +157,7 @@ pub(super) fn run(plan: &Plan, floor: &Seafloor) -> CheckReport {
     families.push(c.chain());
     let (objective, objectives) = c.objective();
     families.push(objective);
+    families.extend(c.graph_families());
     CheckReport {
         families,
         problems: c.problems,
@@ -147,18 +168,31 @@ pub(super) fn run(plan: &Plan, floor: &Seafloor) -> CheckReport {
 }
 
 impl Checker<'_> {
-    fn require(&mut self, ok: bool, problem: impl FnOnce() -> String) {
+    pub(super) fn require(&mut self, ok: bool, problem: impl FnOnce() -> String) {
         self.structural_checks += 1;
         if !ok {
             self.problems.push(problem());
         }
     }
 
-    /// Every AUV path of every window: (window, stage, AUV index, path).
-    fn auv_paths(&self) -> impl Iterator<Item = (usize, &Stage, usize, &AuvPath)> {
-        self.plan.windows.iter().enumerate().flat_map(|(w, win)| {
-            let st = &win.step1;
-            st.auvs.iter().enumerate().map(move |(n, p)| (w, st, n, p))
+    /// Every stage of every window, the final stage (the plan) before Step 1's: (window, prefix
+    /// naming the stage in messages, stage).
+    pub(super) fn stages(&self) -> impl Iterator<Item = (usize, &'static str, &Stage)> {
+        self.plan
+            .windows
+            .iter()
+            .enumerate()
+            .flat_map(|(w, win)| stages(win).map(move |(pre, st)| (w, pre, st)))
+    }
+
+    /// Every AUV path of every stage of every window: (window, stage prefix, stage, AUV index,
+    /// path).
+    fn auv_paths(&self) -> impl Iterator<Item = (usize, &'static str, &Stage, usize, &AuvPath)> {
+        self.stages().flat_map(|(w, pre, st)| {
+            st.auvs
+                .iter()
+                .enumerate()
+                .map(move |(n, p)| (w, pre, st, n, p))
         })
     }
 
@@ -246,59 +280,72 @@ impl Checker<'_> {
                     )
                 },
             );
-            let st = &win.step1;
-            self.require(
-                st.status == "converged" || st.status == "max_iterations",
-                || format!("window {w}: step1 status \"{}\"", st.status),
-            );
-            let o = st.objective;
-            self.require(
-                [o.energy, o.depth, o.usv, o.total]
-                    .iter()
-                    .all(|v| v.is_finite()),
-                || format!("window {w}: a stored objective term is not finite"),
-            );
-            let usv = &st.usv;
-            self.require(usv.position.len() == k.saturating_add(1), || {
-                format!(
-                    "window {w}, USV: {} positions, expected K + 1 = {}",
-                    usv.position.len(),
-                    k.saturating_add(1)
-                )
-            });
-            self.require(usv.input.len() == k, || {
-                format!(
-                    "window {w}, USV: {} inputs, expected K = {k}",
-                    usv.input.len()
-                )
-            });
-            self.require(all_finite(&usv.position) && all_finite(&usv.input), || {
-                format!("window {w}, USV: a non-finite number")
-            });
-            self.require(st.auvs.len() == n, || {
-                format!("window {w}: {} AUV paths, team.auvs = {n}", st.auvs.len())
-            });
-            for (i, a) in st.auvs.iter().enumerate() {
-                for (what, len, want) in [
-                    ("positions", a.position.len(), k.saturating_add(1)),
-                    ("velocities", a.velocity.len(), k.saturating_add(1)),
-                    ("inputs", a.input.len(), k),
-                    ("surge speeds", a.surge_speed.len(), k.saturating_add(1)),
-                    ("headings", a.heading.len(), k.saturating_add(1)),
-                ] {
-                    self.require(len == want, || {
-                        format!("window {w}, AUV {i}: {len} {what}, expected {want}")
-                    });
-                }
-                let finite = all_finite(&a.position)
-                    && all_finite(&a.velocity)
-                    && all_finite(&a.input)
-                    && a.surge_speed.iter().all(|v| v.is_finite())
-                    && a.heading.iter().flatten().all(|v| v.is_finite());
-                self.require(finite, || {
-                    format!("window {w}, AUV {i}: a non-finite number")
+            self.graph_structure(w, win);
+            for (pre, st) in stages(win) {
+                self.stage_structure(w, pre, st);
+            }
+        }
+    }
+
+    /// Lengths and finiteness of one stage of window `w`; `pre` names the stage in messages
+    /// ("" for the final stage, "step1 " for Step 1's).
+    fn stage_structure(&mut self, w: usize, pre: &str, st: &Stage) {
+        let (k, n) = (self.k, self.s.team.auvs);
+        let stage = stage_name(pre);
+        self.require(
+            st.status == "converged" || st.status == "max_iterations",
+            || format!("window {w}: {stage} status \"{}\"", st.status),
+        );
+        let o = st.objective;
+        self.require(
+            [o.energy, o.depth, o.usv, o.total]
+                .iter()
+                .all(|v| v.is_finite()),
+            || format!("window {w}: a stored {stage} objective term is not finite"),
+        );
+        let usv = &st.usv;
+        self.require(usv.position.len() == k.saturating_add(1), || {
+            format!(
+                "window {w}, {pre}USV: {} positions, expected K + 1 = {}",
+                usv.position.len(),
+                k.saturating_add(1)
+            )
+        });
+        self.require(usv.input.len() == k, || {
+            format!(
+                "window {w}, {pre}USV: {} inputs, expected K = {k}",
+                usv.input.len()
+            )
+        });
+        self.require(all_finite(&usv.position) && all_finite(&usv.input), || {
+            format!("window {w}, {pre}USV: a non-finite number")
+        });
+        self.require(st.auvs.len() == n, || {
+            format!(
+                "window {w}: {} AUV paths in the {stage} stage, team.auvs = {n}",
+                st.auvs.len()
+            )
+        });
+        for (i, a) in st.auvs.iter().enumerate() {
+            for (what, len, want) in [
+                ("positions", a.position.len(), k.saturating_add(1)),
+                ("velocities", a.velocity.len(), k.saturating_add(1)),
+                ("inputs", a.input.len(), k),
+                ("surge speeds", a.surge_speed.len(), k.saturating_add(1)),
+                ("headings", a.heading.len(), k.saturating_add(1)),
+            ] {
+                self.require(len == want, || {
+                    format!("window {w}, {pre}AUV {i}: {len} {what}, expected {want}")
                 });
             }
+            let finite = all_finite(&a.position)
+                && all_finite(&a.velocity)
+                && all_finite(&a.input)
+                && a.surge_speed.iter().all(|v| v.is_finite())
+                && a.heading.iter().flatten().all(|v| v.is_finite());
+            self.require(finite, || {
+                format!("window {w}, {pre}AUV {i}: a non-finite number")
+            });
         }
     }
 
@@ -395,7 +442,7 @@ impl Checker<'_> {
         let mut fp = Family::new("C1_1 AUV dynamics (position)", "m", DYNAMICS_POSITION_TOL);
         let mut fv = Family::new("C1_1 AUV dynamics (velocity)", "m/s", DYNAMICS_VELOCITY_TOL);
         let mut fu = Family::new("eq. (9) USV dynamics", "m", DYNAMICS_POSITION_TOL);
-        for (w, _, n, a) in self.auv_paths() {
+        for (w, pre, _, n, a) in self.auv_paths() {
             for k in 0..self.k.min(a.input.len()) {
                 let (Some(p0), Some(v0), Some(u), Some(p1), Some(v1)) = (
                     a.position.get(k),
@@ -407,13 +454,13 @@ impl Checker<'_> {
                     continue;
                 };
                 let (p, v) = step.step(*p0, *v0, *u);
-                let who = || seg(w, k + 1, &format!("AUV {n}"));
+                let who = || seg(w, k + 1, &format!("{pre}AUV {n}"));
                 fp.record(-diff(p, *p1), who);
                 fv.record(-diff(v, *v1), who);
             }
         }
-        for (w, win) in self.plan.windows.iter().enumerate() {
-            let usv = &win.step1.usv;
+        for (w, pre, st) in self.stages() {
+            let usv = &st.usv;
             for k in 0..self.k.min(usv.input.len()) {
                 let (Some(p0), Some(u), Some(p1)) = (
                     usv.position.get(k),
@@ -423,7 +470,7 @@ impl Checker<'_> {
                     continue;
                 };
                 let p = [p0[0] + self.dt * u[0], p0[1] + self.dt * u[1]];
-                fu.record(-diff(p, *p1), || seg(w, k + 1, "USV"));
+                fu.record(-diff(p, *p1), || seg(w, k + 1, &format!("{pre}USV")));
             }
         }
         vec![fp.finish(), fv.finish(), fu.finish()]
@@ -435,17 +482,17 @@ impl Checker<'_> {
     fn speeds(&self) -> Vec<FamilyResult> {
         let mut fu = Family::new("USV speed", "m/s", SPEED_TOL);
         let mut fa = Family::new("C1_7 AUV speed", "m/s", SPEED_TOL);
-        for (w, win) in self.plan.windows.iter().enumerate() {
-            for (k, u) in win.step1.usv.input.iter().enumerate().take(self.k) {
+        for (w, pre, st) in self.stages() {
+            for (k, u) in st.usv.input.iter().enumerate().take(self.k) {
                 fu.record(self.s.usv.max_speed - norm(u), || {
-                    format!("window {w}, input k = {k}, USV: ‖U‖ = {}", norm(u))
+                    format!("window {w}, input k = {k}, {pre}USV: ‖U‖ = {}", norm(u))
                 });
             }
         }
-        for (w, _, n, a) in self.auv_paths() {
+        for (w, pre, _, n, a) in self.auv_paths() {
             for (k, v) in a.velocity.iter().enumerate().take(self.k.saturating_add(1)) {
                 fa.record(self.s.auv.max_speed - norm(v), || {
-                    at(w, k, &format!("AUV {n}: ‖V‖ = {}", norm(v)))
+                    at(w, k, &format!("{pre}AUV {n}: ‖V‖ = {}", norm(v)))
                 });
             }
         }
@@ -458,9 +505,11 @@ impl Checker<'_> {
     fn underwater(&self) -> FamilyResult {
         let mut f = Family::new("C1_4 underwater", "m", LENGTH_TOL);
         let limit = -self.s.auv.surface_clearance;
-        for (w, _, n, a) in self.auv_paths() {
+        for (w, pre, _, n, a) in self.auv_paths() {
             for (k, p) in a.position.iter().enumerate().take(self.k.saturating_add(1)) {
-                f.record(limit - p[2], || at(w, k, &format!("AUV {n}: z = {}", p[2])));
+                f.record(limit - p[2], || {
+                    at(w, k, &format!("{pre}AUV {n}: z = {}", p[2]))
+                });
             }
         }
         f.finish()
@@ -473,13 +522,13 @@ impl Checker<'_> {
         let mut f5 = Family::new("C1_5 range ≤ d_max", "m", LENGTH_TOL);
         let mut f6 = Family::new("C1_6 sonar range at k = 0, K", "m", LENGTH_TOL);
         let (d_max, d_s) = (self.s.acoustic.max_range, self.s.acoustic.sonar_range);
-        for (w, st, n, a) in self.auv_paths() {
+        for (w, pre, st, n, a) in self.auv_paths() {
             for k in 0..=self.k.min(a.position.len()) {
                 let (Some(p), Some(q)) = (a.position.get(k), st.usv.position.get(k)) else {
                     continue;
                 };
                 let d = diff(*p, [q[0], q[1], 0.0]);
-                let who = || at(w, k, &format!("AUV {n}: {d:.3} m from the USV"));
+                let who = || at(w, k, &format!("{pre}AUV {n}: {d:.3} m from the USV"));
                 f5.record(d_max - d, who);
                 if k == 0 || k == self.k {
                     f6.record(d_s - d, who);
@@ -500,8 +549,8 @@ impl Checker<'_> {
         let eps = self.s.auv.floor_clearance;
         let r = self.s.acoustic.resolution;
         let e = self.floor.extent();
-        for (w, _, n, a) in self.auv_paths() {
-            let who = format!("AUV {n}");
+        for (w, pre, _, n, a) in self.auv_paths() {
+            let who = format!("{pre}AUV {n}");
             for (k, p) in a.position.iter().enumerate().take(self.k.saturating_add(1)) {
                 // signed distance inside the extent (f64::min would hide a NaN)
                 let inside = if p[0].is_finite() && p[1].is_finite() {
@@ -606,7 +655,7 @@ impl Checker<'_> {
         let mut f = Family::new("C1_14 heading rate", "rad/s", tol);
         let vmin = self.s.auv.min_heading_speed;
         let max = self.s.auv.max_heading_rate;
-        for (w, _, n, a) in self.auv_paths() {
+        for (w, pre, _, n, a) in self.auv_paths() {
             for k in 1..=self.k.min(a.velocity.len()) {
                 let (Some(va), Some(vb)) = (a.velocity.get(k - 1), a.velocity.get(k)) else {
                     continue;
@@ -615,7 +664,7 @@ impl Checker<'_> {
                 if !(sa >= vmin && sb >= vmin) {
                     if sa.is_nan() || sb.is_nan() {
                         f.record(f64::NAN, || {
-                            seg(w, k, &format!("AUV {n}: non-finite velocity"))
+                            seg(w, k, &format!("{pre}AUV {n}: non-finite velocity"))
                         });
                     }
                     continue;
@@ -626,7 +675,7 @@ impl Checker<'_> {
                     seg(
                         w,
                         k,
-                        &format!("AUV {n}: turns {turn:.5} rad, {rate:.3e} rad/s"),
+                        &format!("{pre}AUV {n}: turns {turn:.5} rad, {rate:.3e} rad/s"),
                     )
                 });
             }
@@ -641,7 +690,7 @@ impl Checker<'_> {
         let mut fs = Family::new("recorded surge speed", "m/s", DERIVED_TOL);
         let mut fh = Family::new("recorded heading", "rad", DERIVED_TOL);
         let vmin = self.s.auv.min_heading_speed;
-        for (w, _, n, a) in self.auv_paths() {
+        for (w, pre, _, n, a) in self.auv_paths() {
             for (k, v) in a.velocity.iter().enumerate().take(self.k.saturating_add(1)) {
                 let speed = v[0].hypot(v[1]);
                 if let Some(stored) = a.surge_speed.get(k) {
@@ -649,7 +698,7 @@ impl Checker<'_> {
                         at(
                             w,
                             k,
-                            &format!("AUV {n}: stored {stored}, ‖(V_x, V_y)‖ = {speed}"),
+                            &format!("{pre}AUV {n}: stored {stored}, ‖(V_x, V_y)‖ = {speed}"),
                         )
                     });
                 }
@@ -669,7 +718,7 @@ impl Checker<'_> {
                         w,
                         k,
                         &format!(
-                            "AUV {n}: stored {}, atan2(V_y, V_x) = {psi} at horizontal speed {speed} \
+                            "{pre}AUV {n}: stored {}, atan2(V_y, V_x) = {psi} at horizontal speed {speed} \
                              (heading defined from {vmin} m/s)",
                             stored.map_or("null".to_string(), |h| h.to_string())
                         ),
@@ -705,9 +754,12 @@ impl Checker<'_> {
                 });
             }
         }
-        for (w, win) in self.plan.windows.iter().enumerate() {
-            let st = &win.step1;
-            let prev = w.checked_sub(1).map(|p| &self.plan.windows[p].step1);
+        for (w, pre, st) in self.stages() {
+            // both stages start where the previous window's final stage (the plan) ended
+            let prev = w
+                .checked_sub(1)
+                .and_then(|p| self.plan.windows.get(p))
+                .map(|p| &p.final_);
             // USV
             let want = match prev {
                 None => Some(init.usv),
@@ -715,7 +767,7 @@ impl Checker<'_> {
             };
             if let (Some(want), Some(got)) = (want, st.usv.position.first()) {
                 f.record(-diff(*got, want), || {
-                    format!("window {w}, k = 0, USV: {got:?}, the previous end is {want:?}")
+                    format!("window {w}, k = 0, {pre}USV: {got:?}, the previous end is {want:?}")
                 });
             }
             // AUVs
@@ -735,111 +787,13 @@ impl Checker<'_> {
                 let err = diff(*pg, pw).max(diff(*vg, vw));
                 f.record(-err, || {
                     format!(
-                        "window {w}, k = 0, AUV {n}: starts at {pg:?} / {vg:?}, {} is {pw:?} / {vw:?}",
+                        "window {w}, k = 0, {pre}AUV {n}: starts at {pg:?} / {vg:?}, {} is {pw:?} / {vw:?}",
                         if w == 0 { "plan.initial" } else { "the previous end" }
                     )
                 });
             }
         }
         f.finish()
-    }
-
-    // ------------------------------------------------------------------------------------
-    // objective terms
-    // ------------------------------------------------------------------------------------
-    fn objective(&self) -> (FamilyResult, Vec<ObjectiveCheck>) {
-        let mut f = Family::new("objective", "relative", OBJECTIVE_REL_TOL);
-        let wt = &self.s.weights;
-        let mut out = Vec::new();
-        for (w, win) in self.plan.windows.iter().enumerate() {
-            let st = &win.step1;
-            let energy: f64 = st
-                .auvs
-                .iter()
-                .flat_map(|a| a.input.iter().take(self.k))
-                .map(|u| u.iter().map(|c| c * c).sum::<f64>())
-                .sum();
-            let depth: f64 = st
-                .auvs
-                .iter()
-                .flat_map(|a| a.position.iter().take(self.k.saturating_add(1)).skip(1))
-                .map(|p| p[2])
-                .sum();
-            // Σ (z − Z(x, y)); a point off the grid is reported by the floor family already
-            let height: f64 = st
-                .auvs
-                .iter()
-                .flat_map(|a| a.position.iter().take(self.k.saturating_add(1)).skip(1))
-                .map(|p| p[2] - self.floor.elevation(p[0], p[1]).unwrap_or(f64::NAN))
-                .sum();
-            let of1_2 = match wt.of1_2 {
-                DepthObjective::Height => height,
-                DepthObjective::Depth => depth,
-            };
-            let (first, last) = (st.usv.position.first(), st.usv.position.get(self.k));
-            let usv = match (first, last) {
-                (Some(p0), Some(pk)) => match self.s.usv.objective {
-                    UsvObjective::Away => (pk[0] - p0[0]).powi(2) + (pk[1] - p0[1]).powi(2),
-                    UsvObjective::Destination => {
-                        let d = self.s.usv.destination;
-                        (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
-                    }
-                },
-                _ => f64::NAN,
-            };
-            let usv_weighted = match self.s.usv.objective {
-                UsvObjective::Away => -wt.w8 * usv,
-                UsvObjective::Destination => wt.w8_2 * usv,
-            };
-            let total = wt.w1 * energy + wt.w2 * of1_2 + usv_weighted;
-            let total_scale = (wt.w1 * energy).abs() + (wt.w2 * of1_2).abs() + usv_weighted.abs();
-            let mine = ObjectiveTerms {
-                energy,
-                depth,
-                height,
-                usv,
-                total,
-                ..ObjectiveTerms::default()
-            };
-            let stored = st.objective;
-            for (name, a, b, scale) in [
-                (
-                    "energy",
-                    stored.energy,
-                    energy,
-                    energy.abs().max(stored.energy.abs()),
-                ),
-                (
-                    "depth",
-                    stored.depth,
-                    depth,
-                    depth.abs().max(stored.depth.abs()),
-                ),
-                (
-                    "height",
-                    stored.height,
-                    height,
-                    height.abs().max(stored.height.abs()),
-                ),
-                ("usv", stored.usv, usv, usv.abs().max(stored.usv.abs())),
-                (
-                    "total",
-                    stored.total,
-                    total,
-                    total_scale.max(stored.total.abs()),
-                ),
-            ] {
-                f.record(-rel(a, b, scale), || {
-                    format!("window {w}, {name}: stored {a}, recomputed {b}")
-                });
-            }
-            out.push(ObjectiveCheck {
-                window: w,
-                stored,
-                recomputed: mine,
-            });
-        }
-        (f.finish(), out)
     }
 }
 

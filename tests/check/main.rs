@@ -2,6 +2,14 @@
 //! constraint fails exactly the family that owns it. Trajectories are rolled out with the
 //! closed-form solution of the continuous AUV model derived here (not the checker's RK4, not
 //! `crate::vehicle`), so the dynamics test also cross-checks the checker's integrator.
+//!
+//! The builder gives each window identical `step1` and `final` stages and an honest Step 2
+//! graph and link report ([`graph::fill_graph`]); tests that tamper with "the plan" tamper with
+//! the final stage. `graph` holds the tests of the Step 2 / Step 3 families, `malformed` those
+//! of truncated and non-finite plans.
+
+mod graph;
+mod malformed;
 
 use shoal::check::{check_plan, load_floor, CheckError, CheckReport};
 use shoal::plan::{
@@ -275,7 +283,7 @@ fn build_with(
             max_speed: s.usv.max_speed,
         },
     };
-    Plan {
+    let mut plan = Plan {
         format: FORMAT.into(),
         shoal_version: "test".into(),
         scenario_source: "test".into(),
@@ -298,7 +306,9 @@ fn build_with(
         initial,
         windows,
         metrics: Default::default(),
-    }
+    };
+    graph::fill_graph(&mut plan);
+    plan
 }
 
 fn build(spec: &Spec, floor: &Seafloor) -> Plan {
@@ -340,7 +350,7 @@ fn a_valid_plan_passes_every_family() {
     // the dynamics agree to rounding, far inside the tolerance
     let dynamics = r.family("C1_1 AUV dynamics (position)").unwrap();
     assert!(dynamics.worst_margin > -1e-9, "{dynamics:?}");
-    assert_eq!(r.objectives.len(), 2);
+    assert_eq!(r.objectives.len(), 4); // two windows, two stages each
 }
 
 #[test]
@@ -420,8 +430,8 @@ fn a_seamount_between_two_good_waypoints_fails_the_segment_check_only() {
     // where AUV 0's segment k = 1 → 2 has its midpoint (the floor does not change the rollout)
     let probe = build(&sp, &flat());
     let (a, b) = (
-        probe.windows[0].step1.auvs[0].position[1],
-        probe.windows[0].step1.auvs[0].position[2],
+        probe.windows[0].final_.auvs[0].position[1],
+        probe.windows[0].final_.auvs[0].position[2],
     );
     let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
     let half = ((b[0] - a[0]).hypot(b[1] - a[1])) / 2.0;
@@ -434,7 +444,14 @@ fn a_seamount_between_two_good_waypoints_fails_the_segment_check_only() {
     });
     let plan = build(&sp, &floor);
     let r = check_plan(&plan, &floor);
-    assert_fails_exactly(&r, &["C2_2 floor clearance (segments)"]);
+    // the peak also stands in the way of the A2A link leaving AUV 0 at k = 1
+    assert_fails_exactly(
+        &r,
+        &[
+            "C2_2 floor clearance (segments)",
+            "planned chain line of sight",
+        ],
+    );
     let seg = r.family("C2_2 floor clearance (segments)").unwrap();
     assert!(seg.where_.contains("k = 1→2, AUV 0"), "{}", seg.where_);
     assert!(seg.worst_margin < -20.0, "{seg:?}");
@@ -470,7 +487,11 @@ fn a_sample_over_nodata_fails_the_obstacle_family_only() {
         ((x - bad[0]).abs() > 1e-6 || (y - bad[1]).abs() > 1e-6).then_some(-100.0)
     });
     let r = check_plan(&build(&sp, &floor), &floor);
-    assert_fails_exactly(&r, &["no obstacle (NODATA/land)"]);
+    // a NODATA node is stored at 0 m: the A2A link leaving AUV 0 at k = 1 runs into it too
+    assert_fails_exactly(
+        &r,
+        &["no obstacle (NODATA/land)", "planned chain line of sight"],
+    );
     let f = r.family("no obstacle (NODATA/land)").unwrap();
     assert!(f.where_.contains("k = 0→1, AUV 0"), "{}", f.where_);
 }
@@ -498,6 +519,11 @@ fn too_far_from_the_usv_at_k_fails_c1_6_only() {
     let e = rates(&sp.s)[0];
     sp.auv_u[0][1] = vec![[-e, 0.0, 0.0]; K];
     sp.usv_u[0] = vec![[1.5, 0.0]; K];
+    // a third AUV waits between them and relays AUV 1 to the USV, so the team stays
+    // acoustically connected (without it, AUV 1 would be cut off at K as well)
+    sp.s.team.auvs = 3;
+    sp.auv0.push([-30.0, 0.0, -55.0]);
+    sp.auv_u[0].push(vec![[0.0; 3]; K]);
     let r = check_plan(&build(&sp, &floor), &floor);
     assert_fails_exactly(&r, &["C1_6 sonar range at k = 0, K"]);
     let f = r.family("C1_6 sonar range at k = 0, K").unwrap();
@@ -529,7 +555,7 @@ fn a_sharp_turn_fails_c1_14_only() {
     let f = r.family("C1_14 heading rate").unwrap();
     assert!(f.where_.contains("k = 2→3, AUV 0"), "{}", f.where_);
     // the rate is recomputed from the velocities, not read from the stored heading
-    let v = &plan.windows[0].step1.auvs[0].velocity;
+    let v = &plan.windows[0].final_.auvs[0].velocity;
     let turn = (v[3][1].atan2(v[3][0]) - v[2][1].atan2(v[2][0])).abs();
     let want = sp.s.auv.max_heading_rate - turn / DT;
     assert!(
@@ -548,7 +574,7 @@ fn the_stored_heading_is_not_trusted() {
     let e = rates(&sp.s)[0];
     sp.auv_u[0][0][2] = [0.0, e, 0.0];
     let mut plan = build(&sp, &floor);
-    let a = &mut plan.windows[0].step1.auvs[0];
+    let a = &mut plan.windows[0].final_.auvs[0];
     a.heading[3] = a.heading[2];
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["C1_14 heading rate", "recorded heading"]);
@@ -605,7 +631,7 @@ fn a_tampered_input_fails_the_dynamics_only() {
     let floor = flat();
     let sp = spec(2);
     let mut plan = build(&sp, &floor);
-    let st = &mut plan.windows[1].step1;
+    let st = &mut plan.windows[1].final_;
     st.auvs[0].input[1][0] += 0.01;
     // a careful forger also fixes the stored objective
     st.objective = objective(&plan.scenario, &floor, &st.usv, &st.auvs);
@@ -626,16 +652,36 @@ fn a_tampered_input_fails_the_dynamics_only() {
 
     // the USV model too
     let mut plan = build(&sp, &floor);
-    plan.windows[0].step1.usv.input[3][1] += 0.01;
+    plan.windows[0].final_.usv.input[3][1] += 0.01;
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["eq. (9) USV dynamics"]);
+
+    // Step 1's stage is checked by the same families, and named in the report
+    let mut plan = build(&sp, &floor);
+    let st = &mut plan.windows[1].step1;
+    st.auvs[0].input[1][0] += 0.01;
+    st.objective = objective(&plan.scenario, &floor, &st.usv, &st.auvs);
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(
+        &r,
+        &[
+            "C1_1 AUV dynamics (position)",
+            "C1_1 AUV dynamics (velocity)",
+        ],
+    );
+    let f = r.family("C1_1 AUV dynamics (velocity)").unwrap();
+    assert!(
+        f.where_.contains("window 1, k = 1→2, step1 AUV 0"),
+        "{}",
+        f.where_
+    );
 }
 
 #[test]
 fn a_tampered_objective_fails_the_objective_only() {
     let floor = flat();
     let mut plan = build(&spec(1), &floor);
-    plan.windows[0].step1.objective.energy *= 1.001;
+    plan.windows[0].final_.objective.energy *= 1.001;
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["objective"]);
     assert!(r.table().contains("energy"));
@@ -654,7 +700,7 @@ fn a_tampered_model_record_fails_the_model_family_only() {
 fn a_tampered_surge_speed_fails_its_family_only() {
     let floor = flat();
     let mut plan = build(&spec(1), &floor);
-    plan.windows[0].step1.auvs[1].surge_speed[2] += 0.1;
+    plan.windows[0].final_.auvs[1].surge_speed[2] += 0.1;
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["recorded surge speed"]);
 }
@@ -742,137 +788,6 @@ fn load_floor_regenerates_the_synthetic_floor() {
         load_floor(&plan, None),
         Err(CheckError::FingerprintMismatch { .. })
     ));
-}
-
-// ---------------------------------------------------------------------------------------------
-// Malformed plans: structure failures, never a panic
-// ---------------------------------------------------------------------------------------------
-
-#[test]
-fn truncated_arrays_fail_the_structure_without_panicking() {
-    let floor = flat();
-    let plan = build(&spec(2), &floor);
-    let r = |p: &Plan| {
-        let r = check_plan(p, &floor);
-        assert!(failing(&r).contains(&"structure"), "\n{}", r.table());
-        r
-    };
-
-    let mut p = plan.clone();
-    p.windows[1].step1.auvs[0].position.pop();
-    let rep = r(&p);
-    assert!(
-        rep.problems[0].contains("window 1, AUV 0: 4 positions, expected 5"),
-        "{:?}",
-        rep.problems
-    );
-
-    let mut p = plan.clone();
-    p.windows[0].step1.usv.input.truncate(1);
-    r(&p);
-
-    let mut p = plan.clone();
-    p.windows[0].step1.auvs.pop();
-    r(&p);
-
-    let mut p = plan.clone();
-    p.windows.pop();
-    r(&p);
-
-    let mut p = plan.clone();
-    p.windows.clear();
-    r(&p);
-
-    let mut p = plan.clone();
-    p.initial.auvs.clear();
-    r(&p);
-
-    let mut p = plan.clone();
-    p.scenario.horizon.steps = 0;
-    r(&p);
-
-    // a corrupt K neither overflows nor makes the checker walk a huge range
-    let mut p = plan.clone();
-    p.scenario.horizon.steps = usize::MAX;
-    r(&p);
-
-    let mut p = plan.clone();
-    p.format = "shoal-plan/0".into();
-    r(&p);
-}
-
-/// Every array of the plan cut to every shorter length, one at a time: never a panic, always a
-/// structure failure.
-#[test]
-fn no_truncation_of_any_array_panics() {
-    let floor = flat();
-    let plan = build(&spec(2), &floor);
-    type Cut = fn(&mut Plan, usize, usize, usize) -> usize;
-    // (window, auv, new length) → original length
-    let cuts: [Cut; 8] = [
-        |p, w, _, l| cut(&mut p.windows[w].step1.usv.position, l),
-        |p, w, _, l| cut(&mut p.windows[w].step1.usv.input, l),
-        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].position, l),
-        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].velocity, l),
-        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].input, l),
-        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].surge_speed, l),
-        |p, w, n, l| cut(&mut p.windows[w].step1.auvs[n].heading, l),
-        |p, w, _, l| cut(&mut p.windows[w].step1.auvs, l),
-    ];
-    fn cut<T>(v: &mut Vec<T>, len: usize) -> usize {
-        let was = v.len();
-        v.truncate(len);
-        was
-    }
-    let mut cases = 0;
-    for c in cuts {
-        for w in 0..2 {
-            for n in 0..2 {
-                for len in 0..=K {
-                    let mut p = plan.clone();
-                    let was = c(&mut p, w, n, len);
-                    if len >= was {
-                        continue;
-                    }
-                    let r = check_plan(&p, &floor);
-                    assert!(failing(&r).contains(&"structure"), "\n{}", r.table());
-                    let _ = r.table();
-                    cases += 1;
-                }
-            }
-        }
-    }
-    assert!(cases > 100);
-}
-
-#[test]
-fn non_finite_numbers_fail_without_panicking() {
-    let floor = flat();
-    let plan = build(&spec(2), &floor);
-    for value in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e300] {
-        for (w, n, k) in [(0, 0, 0), (0, 1, 2), (1, 0, K)] {
-            let mut p = plan.clone();
-            p.windows[w].step1.auvs[n].position[k][0] = value;
-            p.windows[w].step1.auvs[n].velocity[k][1] = value;
-            let r = check_plan(&p, &floor);
-            assert!(!r.passed(), "\n{}", r.table());
-            if !value.is_finite() {
-                assert!(failing(&r).contains(&"structure"));
-            }
-            let _ = r.table();
-        }
-        let mut p = plan.clone();
-        p.scenario.horizon.dt = value;
-        p.scenario.acoustic.resolution = value;
-        assert!(!check_plan(&p, &floor).passed());
-    }
-    let mut p = plan.clone();
-    p.scenario.acoustic.resolution = 0.0;
-    assert!(failing(&check_plan(&p, &floor)).contains(&"structure"));
-    let mut p = plan;
-    p.scenario.auv.mass = 0.0;
-    p.scenario.auv.added_mass_surge = 0.0;
-    assert!(failing(&check_plan(&p, &floor)).contains(&"model record"));
 }
 
 #[test]
