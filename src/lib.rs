@@ -21,7 +21,6 @@ pub mod check;
 pub mod conic;
 pub mod graph;
 pub mod linearise;
-pub mod metrics;
 pub mod output;
 pub mod plan;
 pub mod planner;
