@@ -9,6 +9,7 @@
 //! - [`team`]: the window's variables, constraints and objective, shared by P2 and P5.
 //! - [`step1`]: Step 1, problem P2, solved by [`scp`] (SCvx trust region) over [`conic`] (Clarabel).
 //! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs.
+//! - [`metrics`]: the plan's metrics (energy, swept area, height, connectivity, heading rate).
 //! - [`check`]: independent verification of a plan against the seafloor.
 
 // Numeric kernels index several parallel arrays (x, y, z of positions, gradients and
@@ -18,6 +19,7 @@
 pub mod check;
 pub mod conic;
 pub mod linearise;
+pub mod metrics;
 pub mod output;
 pub mod plan;
 pub mod planner;
