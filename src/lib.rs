@@ -11,6 +11,7 @@
 //! - [`step2`]: Step 2, P3 (A2U link) and P4 (A2A path, [`graph`]) per step.
 //! - [`step3`]: Step 3, problem P5 with the line-of-sight loop (Algorithm 1, lines 17–22).
 //! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs.
+//! - [`metrics`]: the plan's metrics (energy, swept area, height, connectivity, heading rate).
 //! - [`check`]: independent verification of a plan against the seafloor.
 
 // Numeric kernels index several parallel arrays (x, y, z of positions, gradients and
@@ -21,6 +22,7 @@ pub mod check;
 pub mod conic;
 pub mod graph;
 pub mod linearise;
+pub mod metrics;
 pub mod output;
 pub mod plan;
 pub mod planner;
