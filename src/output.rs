@@ -96,7 +96,7 @@ pub fn write_csvs(plan: &Plan, dir: &Path) -> Result<Vec<PathBuf>, OutputError> 
         n
     ];
     for w in &plan.windows {
-        let st = &w.step1;
+        let st = &w.final_; // the plan the team executes (Step 3)
         for (k, p) in st.usv.position.iter().enumerate() {
             let u = st.usv.input.get(k).copied().unwrap_or([f64::NAN; 2]);
             let t = w.start_time + k as f64 * dt;

@@ -41,8 +41,8 @@ fn small_plans_over_several_seeds_pass_the_independent_check() {
     for seed in [1, 2, 3] {
         let p = plan_and_check(&small(seed)).expect("plan");
         assert_eq!(p.windows.len(), 2);
-        // windows chain: window 1 starts where window 0 ended
-        let a = &p.windows[0].step1.auvs[0];
+        // windows chain: window 1 starts where window 0's final plan ended
+        let a = &p.windows[0].final_.auvs[0];
         let b = &p.windows[1].step1.auvs[0];
         assert_eq!(a.position.last(), b.position.first());
     }
@@ -54,7 +54,7 @@ fn destination_objective_moves_the_usv_towards_the_destination() {
     s.usv.objective = scenario::UsvObjective::Destination;
     s.usv.destination = [-2000.0, 500.0];
     let p = plan_and_check(&s).expect("plan");
-    let end = *p.windows[1].step1.usv.position.last().unwrap();
+    let end = *p.windows[1].final_.usv.position.last().unwrap();
     let d0 = (2000f64).hypot(500.0);
     let d1 = (end[0] + 2000.0).hypot(end[1] - 500.0);
     assert!(d1 < d0 - 100.0, "USV did not approach: {d0} → {d1}");
