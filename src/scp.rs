@@ -111,7 +111,10 @@ where
     let mut have_feasible_reference = false;
     // the best accepted iterate that meets every constraint: returned at the iteration limit
     // if the last accepted one (the merit tolerates small violations) does not
-    let mut best: Option<(P::Iterate, Evaluation)> = None;
+    // (a feasible initial reference, such as Step 1's plan for P5, counts)
+    let mut best: Option<(P::Iterate, Evaluation)> = (reference_eval.max_violation
+        <= settings.feasibility_tol)
+        .then(|| (reference.clone(), reference_eval));
 
     for it in 0..settings.max_iterations {
         let (candidate, model_merit, report) = problem.solve_model(&reference, radius, penalty)?;
@@ -157,7 +160,7 @@ where
                 penalty *= PENALTY_GROWTH;
                 continue;
             }
-            return Err(problem.infeasible(&reference));
+            break; // stuck infeasible: the best feasible iterate, if any, or the error below
         }
 
         if first || ratio >= RHO0 {

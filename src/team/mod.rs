@@ -105,6 +105,15 @@ impl<'a> TeamProblem<'a> {
         self
     }
 
+    /// "step1" (P2) or "step3" (P5), for errors.
+    pub fn stage(&self) -> &'static str {
+        if self.links.is_some() {
+            "step3"
+        } else {
+            "step1"
+        }
+    }
+
     pub fn layout(&self) -> Layout {
         self.layout
     }
@@ -334,7 +343,14 @@ impl<'a> TeamProblem<'a> {
 
     /// Solve P2 by SCvx from `guess`.
     pub fn solve(&mut self, guess: Trajectory) -> Result<ScpOutcome<Trajectory>, PlanError> {
-        let settings = self.scenario.scp.clone();
+        let mut settings = self.scenario.scp.clone();
+        if self.links.is_some() {
+            // P5 starts from Step 1's converged plan: moves of a band's width, not of the
+            // Step 1 radius (the default 200 m was rejected three times in a row)
+            settings.trust_region = settings
+                .trust_region
+                .min(self.scenario.acoustic.band_tolerance);
+        }
         scp::solve(self, guess, &settings)
     }
 }
@@ -371,14 +387,14 @@ impl ScpProblem for TeamProblem<'_> {
         ) {
             let culprit = solver.diagnose(&m.b, &m.groups).map(str::to_string);
             return Err(PlanError::ConvexInfeasible {
-                stage: "step1",
+                stage: self.stage(),
                 status: format!("{:?}", sol.status),
                 culprit,
             });
         }
         if !sol.usable() {
             return Err(PlanError::Solver {
-                stage: "step1",
+                stage: self.stage(),
                 status: format!("{:?}", sol.status),
                 iterations: sol.iterations,
             });
@@ -449,7 +465,7 @@ impl ScpProblem for TeamProblem<'_> {
             }
         }
         PlanError::Infeasible {
-            stage: "step1",
+            stage: self.stage(),
             detail: worst.1,
         }
     }
