@@ -106,6 +106,28 @@ pub fn usv_away(d_ref: [f64; 2]) -> (f64, [f64; 2]) {
     )
 }
 
+/// The length ‖d‖ of a link (d = P_a − P_b) and its gradient, the unit direction n̂, about d̄:
+/// the lower end of C5_2/C5_3 is linearised as ‖d̄‖ + n̂ᵀ(d − d̄) = n̂ᵀd. Below 1 µm the
+/// direction is undefined and the x axis is used (the linearisation is then merely valid).
+pub fn link_length(d_ref: [f64; 3]) -> (f64, [f64; 3]) {
+    let len = (d_ref[0] * d_ref[0] + d_ref[1] * d_ref[1] + d_ref[2] * d_ref[2]).sqrt();
+    let n = if len > 1e-6 {
+        d_ref.map(|c| c / len)
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    (len, n)
+}
+
+/// The concave OF1_5 term −‖d‖² of a non-adjacent pair (d = P_i − P_j) linearised about d̄:
+/// returns (value at d̄, gradient −2d̄).
+pub fn spread(d_ref: [f64; 3]) -> (f64, [f64; 3]) {
+    (
+        -(d_ref[0] * d_ref[0] + d_ref[1] * d_ref[1] + d_ref[2] * d_ref[2]),
+        d_ref.map(|c| -2.0 * c),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -124,7 +146,39 @@ mod tests {
         ]
     }
 
+    fn fd3(f: impl Fn([f64; 3]) -> f64, x: [f64; 3], h: f64) -> [f64; 3] {
+        std::array::from_fn(|i| {
+            let (mut a, mut b) = (x, x);
+            a[i] += h;
+            b[i] -= h;
+            (f(a) - f(b)) / (2.0 * h)
+        })
+    }
+
     proptest! {
+        /// Step 3's linearisations (band lower end, OF1_5) against central differences.
+        #[test]
+        fn link_gradients_match_finite_differences(
+            x in -300.0..300.0f64, y in -300.0..300.0f64, z in -150.0..150.0f64,
+        ) {
+            let d = [x, y, z];
+            prop_assume!(x.hypot(y).hypot(z) > 1.0);
+            let norm = |d: [f64; 3]| (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let (v, g) = link_length(d);
+            prop_assert!((v - norm(d)).abs() < 1e-9);
+            let fd = fd3(norm, d, 1e-4);
+            for i in 0..3 {
+                prop_assert!((g[i] - fd[i]).abs() < 1e-6, "{g:?} vs {fd:?}");
+            }
+            let (v, g) = spread(d);
+            let f = |d: [f64; 3]| -norm(d).powi(2);
+            prop_assert!((v - f(d)).abs() < 1e-9 * v.abs().max(1.0));
+            let fd = fd3(f, d, 1e-3);
+            for i in 0..3 {
+                prop_assert!((g[i] - fd[i]).abs() < 1e-4 * g[i].abs().max(1.0), "{g:?} vs {fd:?}");
+            }
+        }
+
         #[test]
         fn heading_gradients_match_finite_differences(
             ax in -3.0..3.0f64, ay in -3.0..3.0f64, bx in -3.0..3.0f64, by in -3.0..3.0f64,

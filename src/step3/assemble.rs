@@ -11,6 +11,7 @@
 //! Links at k = 0 join the window's fixed start and are not variables.
 
 use super::links::ends;
+use crate::linearise::{link_length, spread};
 use crate::plan::Link;
 use crate::team::assemble::Assembly;
 use crate::team::TeamProblem;
@@ -55,11 +56,13 @@ impl TeamProblem<'_> {
                     }
                     let (pi, pj) = (r.auv_p[i][k], r.auv_p[j][k]);
                     let d: [f64; 3] = std::array::from_fn(|c| pi[c] - pj[c]);
+                    // w5·(value + g·(d − d̄)) with d = P_i − P_j
+                    let (value, g) = spread(d);
                     for c in 0..3 {
-                        m.q[l.auv_p(i, k) + c] -= 2.0 * w5 * d[c];
-                        m.q[l.auv_p(j, k) + c] += 2.0 * w5 * d[c];
+                        m.q[l.auv_p(i, k) + c] += w5 * g[c];
+                        m.q[l.auv_p(j, k) + c] -= w5 * g[c];
                     }
-                    m.constant += w5 * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                    m.constant += w5 * (value - (g[0] * d[0] + g[1] * d[1] + g[2] * d[2]));
                 }
             }
         }
@@ -72,13 +75,7 @@ impl TeamProblem<'_> {
         for k in 1..=l.k {
             for (li, (&link, band)) in set.links[k].iter().zip(&set.bands[k]).enumerate() {
                 let (a, b) = ends(r, k, link);
-                let d: [f64; 3] = std::array::from_fn(|c| a[c] - b[c]);
-                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                let n = if len > 1e-6 {
-                    d.map(|c| c / len)
-                } else {
-                    [1.0, 0.0, 0.0]
-                };
+                let (_, n) = link_length(std::array::from_fn(|c| a[c] - b[c]));
                 // −n̂ᵀP_a + n̂ᵀP_b − ν ≤ −lo
                 let row = m.row(-band.lo);
                 for (c, col) in self.end_columns(k, Some(link.a)).iter().enumerate() {

@@ -74,14 +74,20 @@ pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, Pla
                 why: why.clone(),
             });
         }
-        for (k, li, _) in &blocked {
-            let band = &mut set.bands[*k][*li];
-            band.hi = (band.hi - shrink).max(0.0);
-            band.lo = band.lo.min(band.hi);
-        }
+        lower_bands(set, &blocked, shrink);
         reference = out.iterate;
     }
     unreachable!("los_rounds ≥ 1 (scenario validation)")
+}
+
+/// Algorithm 1, line 20: lower the upper end of every blocked link's band by `shrink` (the
+/// lower end follows when the band would close), so the next P5 pulls its ends closer.
+fn lower_bands(set: &mut LinkSet, blocked: &[(usize, usize, String)], shrink: f64) {
+    for (k, li, _) in blocked {
+        let band = &mut set.bands[*k][*li];
+        band.hi = (band.hi - shrink).max(0.0);
+        band.lo = band.lo.min(band.hi);
+    }
 }
 
 /// (k, link index, why) of every planned link at k = 1..=K without line of sight.
@@ -189,4 +195,104 @@ pub fn connected(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::Graph;
+    use crate::seafloor::Seafloor;
+
+    /// A floor at −100 m with a ridge rising to −20 m along x = 0.
+    fn ridge() -> Seafloor {
+        let (n, c, x0) = (41usize, 25.0, -500.0);
+        let z = (0..n * n)
+            .map(|i| {
+                let x = x0 + (i % n) as f64 * c;
+                if x.abs() < 30.0 {
+                    -20.0
+                } else {
+                    -100.0
+                }
+            })
+            .collect();
+        Seafloor::from_nodes(n, n, x0, x0, c, c, z, vec![false; n * n]).unwrap()
+    }
+
+    /// Two AUVs at −60 m on either side of the ridge, the USV above AUV 0; one step.
+    fn team() -> (Trajectory, LinkSet) {
+        let t = Trajectory {
+            usv_p: vec![[-100.0, 0.0]; 2],
+            usv_u: vec![[0.0; 2]],
+            auv_p: vec![vec![[-70.0, 0.0, -60.0]; 2], vec![[70.0, 0.0, -60.0]; 2]],
+            auv_v: vec![vec![[0.0; 3]; 2]; 2],
+            auv_u: vec![vec![[0.0; 3]]; 2],
+        };
+        let g = Graph {
+            a2u: vec![0, 0],
+            a2a: vec![vec![[0, 1]]; 2],
+            exact: true,
+            solve_time_s: 0.0,
+        };
+        (t, LinkSet::from_graph(&g, 150.0, 30.0))
+    }
+
+    #[test]
+    fn the_ridge_blocks_the_a2a_edge_and_only_it() {
+        let (t, set) = team();
+        let blocked = blocked_links(&ridge(), &set, &t, 5.0);
+        assert_eq!(blocked.len(), 1, "{blocked:?}");
+        let (k, li, why) = &blocked[0];
+        assert_eq!((*k, set.links[*k][*li]), (1, Link { a: 0, b: Some(1) }));
+        assert!(why.contains("the floor rises"), "{why}");
+        assert_eq!(describe(set.links[1][1]), "A2A edge AUV 0–AUV 1");
+    }
+
+    #[test]
+    fn a_blocked_links_band_is_lowered_and_stays_a_band() {
+        let (t, mut set) = team();
+        let blocked = blocked_links(&ridge(), &set, &t, 5.0);
+        lower_bands(&mut set, &blocked, 15.0);
+        assert_eq!(
+            set.bands[1][1],
+            Band {
+                lo: 120.0,
+                hi: 135.0
+            }
+        );
+        assert_eq!(
+            set.bands[1][0],
+            Band {
+                lo: 120.0,
+                hi: 150.0
+            }
+        ); // the A2U link is clear
+        for _ in 0..3 {
+            lower_bands(&mut set, &blocked, 15.0);
+        }
+        assert_eq!(set.bands[1][1], Band { lo: 90.0, hi: 90.0 });
+    }
+
+    /// The ridge cuts AUV 1 off: its only links are to AUV 0 (blocked) and to the USV (out of
+    /// range, 180 m).
+    #[test]
+    fn connectivity_names_the_step_and_the_auv_cut_off() {
+        let (t, _) = team();
+        let s = crate::scenario::Scenario::default();
+        let (k, why) = connected(&t, &ridge(), &s).unwrap_err();
+        assert_eq!(k, 0);
+        assert!(why.starts_with("AUV 1 at (70.0, 0.0, -60.0)"), "{why}");
+        // without the ridge, AUV 1 reaches the USV through AUV 0 (140 m, in sight)
+        let flat = Seafloor::from_nodes(
+            2,
+            2,
+            -500.0,
+            -500.0,
+            1000.0,
+            1000.0,
+            vec![-100.0; 4],
+            vec![false; 4],
+        );
+        assert!(connected(&t, &flat.unwrap(), &s).is_ok());
+    }
 }
