@@ -6,6 +6,18 @@ use shoal::planner::{plan, scenario_floor, PlanInput};
 use shoal::scenario::Scenario;
 use shoal::seafloor::Seafloor;
 
+/// Plan `s` over `f` (the test's own floor, recorded as a file floor).
+fn plan_on(s: &Scenario, f: &Seafloor, source: (String, Option<String>)) -> shoal::plan::Plan {
+    let input = PlanInput {
+        scenario: s,
+        floor: f,
+        scenario_source: "test".into(),
+        overrides: vec![],
+        seafloor_source: source,
+    };
+    plan(&input).expect("the planner plans")
+}
+
 /// A sloping floor with two Gaussian seamounts, 25 m cells over [−3000, 3000]².
 fn floor() -> Seafloor {
     let (n, c, x0) = (241usize, 25.0, -3000.0);
@@ -32,14 +44,7 @@ fn the_planners_plan_passes_the_check() {
     // refuse the end of window 0, which its SCP accepted within scp.feasibility_tol = 1e-3 m.
     s.windows = 1;
     let f = floor();
-    let input = PlanInput {
-        scenario: &s,
-        floor: &f,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: ("file".into(), None),
-    };
-    let p = plan(&input).expect("the planner plans");
+    let p = plan_on(&s, &f, ("file".into(), None));
     let r = check_plan(&p, &f);
     assert!(r.passed(), "\n{}", r.table());
 
@@ -78,14 +83,7 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
         usv: [0.0, 0.0],
         auvs: vec![[30.0, 0.0, -60.0], [-20.0, 40.0, -70.0]],
     });
-    let input = PlanInput {
-        scenario: &s,
-        floor: &f,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: ("file".into(), None),
-    };
-    let p = plan(&input).expect("the planner plans");
+    let p = plan_on(&s, &f, ("file".into(), None));
     assert!(check_plan(&p, &f).passed());
 
     let (kk, dt) = (s.horizon.steps, s.horizon.dt);
@@ -197,14 +195,7 @@ fn paper_experiment(auvs: usize, windows: usize) {
     };
     s.team.auvs = auvs;
     let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
-    let input = PlanInput {
-        scenario: &s,
-        floor: &f,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    };
-    let p = plan(&input).expect("the planner plans");
+    let p = plan_on(&s, &f, source);
     let r = check_plan(&p, &f);
     assert!(r.passed(), "\n{}", r.table());
     assert_eq!(p.windows.len(), windows);

@@ -47,11 +47,25 @@ pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, Pla
     let mut reference = step1.clone();
     let mut iterations = 0;
     let mut trace = Vec::new();
-    for round in 1..=s.acoustic.los_rounds {
+    let mut round = 0;
+    loop {
+        round += 1;
         let mut out = problem.solve(reference)?;
         iterations += out.trace.len();
         trace.append(&mut out.trace);
-        let set = problem.links.as_mut().expect("P5 has links");
+        let Some(set) = problem.links.as_mut() else {
+            // without links this is P2: nothing to keep in sight
+            return Ok(Step3 {
+                links: LinkSet {
+                    links: vec![],
+                    bands: vec![],
+                },
+                los_rounds: round,
+                out_of_band: vec![],
+                iterations,
+                outcome: out,
+            });
+        };
         let blocked = blocked_links(problem.floor, set, &out.iterate, r);
         if blocked.is_empty() {
             out.trace = trace;
@@ -65,7 +79,7 @@ pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, Pla
                 iterations,
             });
         }
-        if round == s.acoustic.los_rounds {
+        if round >= s.acoustic.los_rounds {
             let (k, li, why) = &blocked[0];
             return Err(PlanError::LineOfSight {
                 link: describe(set.links[*k][*li]),
@@ -77,7 +91,6 @@ pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, Pla
         lower_bands(set, &blocked, shrink);
         reference = out.iterate;
     }
-    unreachable!("los_rounds ≥ 1 (scenario validation)")
 }
 
 /// Algorithm 1, line 20: lower the upper end of every blocked link's band by `shrink` (the

@@ -38,6 +38,18 @@ impl Assembly {
         self.b.push(b);
         self.b.len() - 1
     }
+    /// x_min ≤ x ≤ x_max and y_min ≤ y ≤ y_max for the (x, y) at columns `col`, `col + 1`.
+    fn grid_bounds(&mut self, col: usize, ext: &crate::seafloor::Extent) {
+        for (c, lo, hi) in [(col, ext.x_min, ext.x_max), (col + 1, ext.y_min, ext.y_max)] {
+            let row = self.row(hi);
+            self.a.push(row, c, 1.0);
+            self.group(GRID, row);
+            let row = self.row(-lo);
+            self.a.push(row, c, -1.0);
+            self.group(GRID, row);
+        }
+    }
+
     /// Record `row` as a bound of the group `name`.
     fn group(&mut self, name: &'static str, row: usize) {
         match self.groups.iter_mut().find(|g| g.0 == name) {
@@ -183,28 +195,12 @@ impl TeamProblem<'_> {
                 m.a.push(row, z, 1.0);
                 m.group(UNDERWATER, row);
                 // grid bounds: the floor is only known inside the grid
-                let x = l.auv_p(n, k);
-                for (col, lo, hi) in [(x, ext.x_min, ext.x_max), (x + 1, ext.y_min, ext.y_max)] {
-                    let row = m.row(hi);
-                    m.a.push(row, col, 1.0);
-                    m.group(GRID, row);
-                    let row = m.row(-lo);
-                    m.a.push(row, col, -1.0);
-                    m.group(GRID, row);
-                }
+                m.grid_bounds(l.auv_p(n, k), &ext);
             }
         }
         // the USV stays over the known map too: past the edge, OF1_8 would drag the team out
         for k in 1..=kk {
-            let x = l.usv_p(k);
-            for (col, lo, hi) in [(x, ext.x_min, ext.x_max), (x + 1, ext.y_min, ext.y_max)] {
-                let row = m.row(hi);
-                m.a.push(row, col, 1.0);
-                m.group(GRID, row);
-                let row = m.row(-lo);
-                m.a.push(row, col, -1.0);
-                m.group(GRID, row);
-            }
+            m.grid_bounds(l.usv_p(k), &ext);
         }
         self.floor_rows(r, &mut m)?;
         self.heading_rows(r, &mut m);
