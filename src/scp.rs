@@ -90,6 +90,10 @@ const SHRINK: f64 = 2.0;
 const GROW: f64 = 2.0;
 const PENALTY_GROWTH: f64 = 10.0;
 const PENALTY_MAX_FACTOR: f64 = 1e4;
+/// Accepted iterations after a rejection during which Δ may not grow. Without it a floor that
+/// the model can trust for 25 m but not 50 m makes the loop alternate accept (25 m, ρ ≈ 1, grow)
+/// and reject (50 m, ρ ≪ 0, shrink), wasting every other iteration (seen with N = 10).
+const GROWTH_COOLDOWN: usize = 3;
 
 /// Run SCvx from `initial`. The first model solution is always accepted: the initial guess
 /// need not satisfy the convex constraints, so comparing merits against it means nothing.
@@ -109,6 +113,7 @@ where
     let mut penalty = settings.penalty;
     let mut trace = Vec::new();
     let mut have_feasible_reference = false;
+    let mut cooldown = 0usize;
     // the best accepted iterate that meets every constraint: returned at the iteration limit
     // if the last accepted one (the merit tolerates small violations) does not
     // (a feasible initial reference, such as Step 1's plan for P5, counts)
@@ -177,9 +182,14 @@ where
             }
         }
         if !first {
+            if ratio < RHO0 {
+                cooldown = GROWTH_COOLDOWN;
+            } else {
+                cooldown = cooldown.saturating_sub(1);
+            }
             if ratio < RHO1 {
                 radius /= SHRINK;
-            } else if ratio > RHO2 {
+            } else if ratio > RHO2 && cooldown == 0 {
                 radius = (radius * GROW).min(max_radius);
             }
         }

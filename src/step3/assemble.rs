@@ -13,7 +13,7 @@
 use super::links::ends;
 use crate::linearise::{link_length, spread};
 use crate::plan::Link;
-use crate::team::assemble::Assembly;
+use crate::team::assemble::{Assembly, RANGE_MARGIN};
 use crate::team::TeamProblem;
 use crate::trajectory::Trajectory;
 use clarabel::solver::SupportedConeT::SecondOrderConeT;
@@ -101,7 +101,9 @@ impl TeamProblem<'_> {
         let l = self.layout;
         for k in 1..=l.k {
             for (li, (&link, band)) in set.links[k].iter().zip(&set.bands[k]).enumerate() {
-                let row = m.row(band.hi);
+                // tightened like C1_6, so the solver's residual cannot leave a link at the top
+                // of its band a hair beyond d_s
+                let row = m.row(band.hi - RANGE_MARGIN);
                 m.a.push(row, l.band_upper_slack(li, k), -1.0);
                 let ca = self.end_columns(k, Some(link.a));
                 let cb = self.end_columns(k, link.b);

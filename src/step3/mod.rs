@@ -158,6 +158,9 @@ pub fn describe(link: Link) -> String {
     }
 }
 
+/// Range tolerance of `connected`, metres (the checker's).
+const RANGE_TOLERANCE: f64 = 1e-6;
+
 /// The hard requirement behind the chain: at every step k = 0..=K every AUV reaches the USV
 /// through links (any pair) no longer than d_s with line of sight (𝓛_r, clearance ≥ 0).
 /// Err((k, why)) names the first step and an AUV cut off.
@@ -180,7 +183,7 @@ pub fn connected(
         let linked = |i: usize, j: usize| {
             let (a, b) = (at(i), at(j));
             let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-            d <= ds
+            d <= ds + RANGE_TOLERANCE
                 && floor
                     .segment_clearance(a, b, r)
                     .is_ok_and(|c| c.min_clearance >= 0.0)

@@ -363,11 +363,11 @@ impl TeamProblem<'_> {
 /// metres; speeds, relative), so that the solver's own residuals (up to about 1e-4 m on
 /// positions of a few km, once the plan is re-simulated from its inputs) cannot leave a
 /// bound violated beyond the checker's 1e-6 tolerance.
-const RANGE_MARGIN: f64 = 1e-3;
+pub(crate) const RANGE_MARGIN: f64 = 1e-3;
 const SPEED_MARGIN: f64 = 1e-6;
 
 /// Extra clearance (m) the convex model asks for beyond ε (constraint tightening).
-pub(super) const FLOOR_MARGIN: f64 = 0.05;
+pub(super) const FLOOR_MARGIN: f64 = 0.25;
 
 /// Floor rows per segment (see `floor_rows`).
 pub(super) const FLOOR_ROWS: usize = 12;
