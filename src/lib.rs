@@ -13,6 +13,7 @@
 //! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs.
 //! - [`metrics`]: the plan's metrics (energy, swept area, height, connectivity, heading rate).
 //! - [`check`]: independent verification of a plan against the seafloor.
+//! - [`viewer`]: the plan as one self-contained, interactive 3D HTML page (three.js).
 
 // Numeric kernels index several parallel arrays (x, y, z of positions, gradients and
 // coefficients) with one loop variable; iterator chains would obscure the maths.
@@ -36,3 +37,4 @@ pub mod step3;
 pub mod team;
 pub mod trajectory;
 pub mod vehicle;
+pub mod viewer;

@@ -50,6 +50,16 @@ enum Command {
         #[arg(long)]
         seafloor: Option<PathBuf>,
     },
+    /// Write one self-contained HTML file showing a plan in 3D (opens offline in a browser).
+    View {
+        plan: PathBuf,
+        /// The HTML file to write.
+        #[arg(short, long, default_value = "mission.html")]
+        out: PathBuf,
+        /// Show the plan on this seafloor grid instead of the one the plan names.
+        #[arg(long)]
+        seafloor: Option<PathBuf>,
+    },
     /// Seafloor tools.
     Seafloor {
         #[command(subcommand)]
@@ -116,6 +126,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 Ok(ExitCode::from(1))
             }
         }
+        Command::View {
+            plan,
+            out,
+            seafloor,
+        } => view(&plan, seafloor.as_deref(), &out),
         Command::Seafloor {
             command: SeafloorCommand::Export { scenario, set, out },
         } => {
@@ -133,6 +148,20 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
     }
+}
+
+fn view(plan: &Path, seafloor: Option<&Path>, out: &Path) -> Result<ExitCode> {
+    let p = shoal::output::read_plan(plan)?;
+    let floor = shoal::check::load_floor(&p, seafloor)
+        .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
+    shoal::viewer::write_html(&p, &floor, out)?;
+    let size = std::fs::metadata(out).map(|m| m.len()).unwrap_or(0);
+    println!(
+        "wrote {} ({:.1} MB): open it in a browser",
+        out.display(),
+        size as f64 / 1e6
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 fn toml_string(p: &Path) -> String {

@@ -1,0 +1,281 @@
+//! What the viewer page needs from a plan, as one JSON object: the seafloor around the mission
+//! (cropped and downsampled), the final-stage paths of every window, the planned links per step,
+//! and the metrics. Nothing else of the plan is embedded.
+
+use super::ViewerError;
+use crate::plan::{Link, Metrics, Plan, Window};
+use crate::seafloor::Seafloor;
+use serde::Serialize;
+
+/// Largest number of mesh vertices along either axis of the floor sent to the page.
+pub const MAX_FLOOR_VERTICES: usize = 256;
+
+/// Quantised elevation marking a NODATA node.
+const NODATA_CODE: u16 = u16::MAX;
+
+#[derive(Debug, Serialize)]
+pub struct ViewerData {
+    pub title: String,
+    pub shoal_version: String,
+    pub scenario_source: String,
+    pub seed: u64,
+    /// N, K, δ (s), d_s and d_t (m).
+    pub auvs: usize,
+    pub steps: usize,
+    pub dt: f64,
+    pub sonar_range: f64,
+    pub band_tolerance: f64,
+    pub floor: FloorData,
+    pub windows: Vec<WindowData>,
+    pub metrics: Metrics,
+}
+
+/// The floor mesh: `nx × ny` vertices at (x0 + i·dx, y0 + j·dy), row j = 0 southernmost.
+#[derive(Debug, Serialize)]
+pub struct FloorData {
+    /// "synthetic" or "file", and the full grid it was cut from.
+    pub source: String,
+    pub grid_nx: usize,
+    pub grid_ny: usize,
+    pub grid_dx: f64,
+    pub nx: usize,
+    pub ny: usize,
+    pub x0: f64,
+    pub y0: f64,
+    pub dx: f64,
+    pub dy: f64,
+    /// Deepest and shallowest data vertex, m.
+    pub z_lo: f64,
+    pub z_hi: f64,
+    /// Base64 of nx·ny little-endian u16: z = z_lo + q·(z_hi − z_lo)/65534, q = 65535 NODATA.
+    pub z: String,
+}
+
+#[derive(Debug, Serialize)]
+pub struct WindowData {
+    pub index: usize,
+    pub start_time: f64,
+    pub status: String,
+    pub iterations: usize,
+    pub los_rounds: usize,
+    /// Final stage: USV [x, y] and AUV [x, y, z] per step k = 0..=K, rounded to 1 cm.
+    pub usv: Vec<[f64; 2]>,
+    pub auvs: Vec<Vec<[f64; 3]>>,
+    /// Per step: the planned links [a, b], b = null for the A2U link.
+    pub links: Vec<Vec<(usize, Option<usize>)>>,
+    /// [k, a, b] of every link-step outside its band.
+    pub out_of_band: Vec<(usize, usize, Option<usize>)>,
+    pub metrics: Metrics,
+}
+
+pub fn build(plan: &Plan, floor: &Seafloor) -> Result<ViewerData, ViewerError> {
+    let n = plan.scenario.team.auvs;
+    let windows = plan
+        .windows
+        .iter()
+        .map(|w| window(w, n))
+        .collect::<Result<Vec<_>, _>>()?;
+    if windows.is_empty() {
+        return Err(ViewerError::Plan("it has no windows".into()));
+    }
+    let margin = (2.0 * plan.scenario.acoustic.sonar_range).max(100.0);
+    Ok(ViewerData {
+        title: format!(
+            "shoal: N = {n} AUVs, {} window(s) of K = {} steps, seed {}",
+            windows.len(),
+            plan.scenario.horizon.steps,
+            plan.scenario.seed
+        ),
+        shoal_version: plan.shoal_version.clone(),
+        scenario_source: plan.scenario_source.clone(),
+        seed: plan.scenario.seed,
+        auvs: n,
+        steps: plan.scenario.horizon.steps,
+        dt: plan.scenario.horizon.dt,
+        sonar_range: plan.scenario.acoustic.sonar_range,
+        band_tolerance: plan.scenario.acoustic.band_tolerance,
+        floor: floor_mesh(floor, &plan.seafloor.source, bounds(&windows), margin),
+        windows,
+        metrics: plan.metrics.clone(),
+    })
+}
+
+fn window(w: &Window, n: usize) -> Result<WindowData, ViewerError> {
+    let bad = |why: String| ViewerError::Plan(format!("window {}: {why}", w.index));
+    let stage = &w.final_;
+    let steps = stage.usv.position.len();
+    if steps == 0 {
+        return Err(bad("the final stage has no USV positions".into()));
+    }
+    if stage.auvs.len() != n {
+        return Err(bad(format!(
+            "the final stage has {} AUV paths, the scenario {n} AUVs",
+            stage.auvs.len()
+        )));
+    }
+    let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+    if !stage.usv.position.iter().all(|p| finite(p)) {
+        return Err(bad("a USV position is not finite".into()));
+    }
+    let mut auvs = Vec::with_capacity(n);
+    for (i, a) in stage.auvs.iter().enumerate() {
+        if a.position.len() != steps {
+            return Err(bad(format!(
+                "AUV {i} has {} positions, the USV {steps}",
+                a.position.len()
+            )));
+        }
+        if !a.position.iter().all(|p| finite(p)) {
+            return Err(bad(format!("a position of AUV {i} is not finite")));
+        }
+        auvs.push(a.position.iter().map(|p| p.map(cm)).collect());
+    }
+    let ok = |l: &Link| l.a < n && l.b.iter().all(|&b| b < n);
+    if let Some(l) = w.links.links.iter().flatten().find(|l| !ok(l)) {
+        return Err(bad(format!(
+            "link {l:?} names an AUV beyond the {n} of the team"
+        )));
+    }
+    if w.links.links.len() > steps {
+        return Err(bad(format!(
+            "{} steps of links for {steps} positions",
+            w.links.links.len()
+        )));
+    }
+    Ok(WindowData {
+        index: w.index,
+        start_time: w.start_time,
+        status: stage.status.clone(),
+        iterations: stage.iterations,
+        los_rounds: w.links.los_rounds,
+        usv: stage.usv.position.iter().map(|p| p.map(cm)).collect(),
+        auvs,
+        links: w
+            .links
+            .links
+            .iter()
+            .map(|ls| ls.iter().map(|l| (l.a, l.b)).collect())
+            .collect(),
+        out_of_band: w
+            .links
+            .out_of_band
+            .iter()
+            .filter(|o| ok(&o.link))
+            .map(|o| (o.k, o.link.a, o.link.b))
+            .collect(),
+        metrics: w.metrics.clone(),
+    })
+}
+
+fn cm(v: f64) -> f64 {
+    (v * 100.0).round() / 100.0
+}
+
+/// [x_min, x_max, y_min, y_max] over every vehicle position.
+fn bounds(windows: &[WindowData]) -> [f64; 4] {
+    let mut b = [
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    let xy = windows.iter().flat_map(|w| {
+        let usv = w.usv.iter().map(|p| [p[0], p[1]]);
+        usv.chain(w.auvs.iter().flatten().map(|p| [p[0], p[1]]))
+    });
+    for [x, y] in xy {
+        b = [b[0].min(x), b[1].max(x), b[2].min(y), b[3].max(y)];
+    }
+    b
+}
+
+/// The floor under the mission: the vehicles' bounding box grown by `margin` and by 15 % of its
+/// longer side, its shorter side widened to at least half the longer one, clipped to the grid;
+/// then every s-th node (the same stride on both axes) so neither axis has more than
+/// [`MAX_FLOOR_VERTICES`] vertices.
+pub fn floor_mesh(floor: &Seafloor, source: &str, b: [f64; 4], margin: f64) -> FloorData {
+    let span = (b[1] - b[0]).max(b[3] - b[2]);
+    let grow = margin.max(0.15 * span);
+    let (mut xs, mut ys) = ([b[0] - grow, b[1] + grow], [b[2] - grow, b[3] + grow]);
+    let long = (xs[1] - xs[0]).max(ys[1] - ys[0]);
+    for r in [&mut xs, &mut ys] {
+        let widen = (0.5 * long - (r[1] - r[0])).max(0.0) / 2.0;
+        *r = [r[0] - widen, r[1] + widen];
+    }
+    let index = |v: f64, o: f64, d: f64, n: usize, up: bool| {
+        let u = (v - o) / d;
+        let u = if up { u.ceil() } else { u.floor() };
+        u.clamp(0.0, (n - 1) as f64) as usize
+    };
+    let (fx, fy) = (floor.nx(), floor.ny());
+    let (i0, i1) = (
+        index(xs[0], floor.x0(), floor.dx(), fx, false),
+        index(xs[1], floor.x0(), floor.dx(), fx, true),
+    );
+    let (j0, j1) = (
+        index(ys[0], floor.y0(), floor.dy(), fy, false),
+        index(ys[1], floor.y0(), floor.dy(), fy, true),
+    );
+    let widest = (i1 - i0).max(j1 - j0);
+    let stride = widest.div_ceil(MAX_FLOOR_VERTICES - 1).max(1);
+    let nx = (i1 - i0) / stride + 1;
+    let ny = (j1 - j0) / stride + 1;
+    let nodes: Vec<Option<f64>> = (0..ny)
+        .flat_map(|j| (0..nx).map(move |i| (i0 + i * stride, j0 + j * stride)))
+        .map(|(i, j)| (!floor.is_nodata(i, j)).then(|| floor.node(i, j)))
+        .collect();
+    let (lo, hi) = nodes
+        .iter()
+        .flatten()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &z| {
+            (lo.min(z), hi.max(z))
+        });
+    let (lo, hi) = if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
+    let scale = if hi > lo {
+        f64::from(NODATA_CODE - 1) / (hi - lo)
+    } else {
+        0.0
+    };
+    let mut bytes = Vec::with_capacity(2 * nodes.len());
+    for z in &nodes {
+        let q = z.map_or(NODATA_CODE, |z| ((z - lo) * scale).round() as u16);
+        bytes.extend_from_slice(&q.to_le_bytes());
+    }
+    FloorData {
+        source: source.to_string(),
+        grid_nx: fx,
+        grid_ny: fy,
+        grid_dx: floor.dx(),
+        nx,
+        ny,
+        x0: floor.x0() + i0 as f64 * floor.dx(),
+        y0: floor.y0() + j0 as f64 * floor.dy(),
+        dx: floor.dx() * stride as f64,
+        dy: floor.dy() * stride as f64,
+        z_lo: lo,
+        z_hi: hi,
+        z: base64(&bytes),
+    }
+}
+
+/// Standard base64 (RFC 4648, with padding), what the page's `atob` reads.
+pub fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let v = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for (k, shift) in [18, 12, 6, 0].into_iter().enumerate() {
+            if k <= chunk.len() {
+                out.push(char::from(ALPHABET[((v >> shift) & 63) as usize]));
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
