@@ -13,6 +13,7 @@
 //! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs.
 //! - [`metrics`]: the plan's metrics (energy, swept area, height, connectivity, heading rate).
 //! - [`check`]: independent verification of a plan against the seafloor.
+//! - [`figures`]: PNG and SVG figures of a plan (the paper's Fig. 4 panels, time series, metrics).
 
 // Numeric kernels index several parallel arrays (x, y, z of positions, gradients and
 // coefficients) with one loop variable; iterator chains would obscure the maths.
@@ -20,6 +21,7 @@
 
 pub mod check;
 pub mod conic;
+pub mod figures;
 pub mod graph;
 pub mod linearise;
 pub mod metrics;
