@@ -141,7 +141,7 @@ pub(crate) fn encode_png(w: u32, h: u32, rgb: &[u8]) -> Vec<u8> {
     let mut enc = png::Encoder::new(&mut out, w, h);
     enc.set_color(png::ColorType::Rgb);
     enc.set_depth(png::BitDepth::Eight);
-    enc.set_compression(png::Compression::Fast);
+    enc.set_compression(png::Compression::Balanced);
     // Writing to a Vec fails only on a size mismatch, which the callers rule out.
     if let Ok(mut writer) = enc.write_header() {
         let _ = writer.write_image_data(rgb);

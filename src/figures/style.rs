@@ -243,3 +243,19 @@ fn swatch<DB: DrawingBackend>(root: &Area<DB>, s: Swatch, x: i32, y: i32) -> Dra
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_drop_needless_decimals_and_use_a_true_minus() {
+        assert_eq!(tick(&-100.0), "−100");
+        assert_eq!(tick(&-0.0), "0");
+        assert_eq!(tick(&0.5), "0.5");
+        assert_eq!(tick(&2.25), "2.25");
+        assert_eq!(vehicle_name(None), "USV");
+        assert_eq!(vehicle_name(Some(3)), "AUV 3");
+        assert_eq!(vehicle_colour(Some(21)), vehicle_colour(Some(1)));
+    }
+}
