@@ -14,6 +14,7 @@
 //! - [`metrics`]: the plan's metrics (energy, swept area, height, connectivity, heading rate).
 //! - [`check`]: independent verification of a plan against the seafloor.
 //! - [`viewer`]: the plan as one self-contained, interactive 3D HTML page (three.js).
+//! - [`figures`]: PNG and SVG figures of a plan (the paper's Fig. 4 panels, time series, metrics).
 
 // Numeric kernels index several parallel arrays (x, y, z of positions, gradients and
 // coefficients) with one loop variable; iterator chains would obscure the maths.
@@ -21,6 +22,7 @@
 
 pub mod check;
 pub mod conic;
+pub mod figures;
 pub mod graph;
 pub mod linearise;
 pub mod metrics;

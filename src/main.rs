@@ -42,6 +42,12 @@ enum Command {
         /// Output directory.
         #[arg(short, long, default_value = "out")]
         out: PathBuf,
+        /// Draw the figures into OUT/figures (the default).
+        #[arg(long, overrides_with = "no_plot")]
+        plot: bool,
+        /// Do not draw the figures.
+        #[arg(long, overrides_with = "plot")]
+        no_plot: bool,
     },
     /// Verify every constraint of a plan from the plan file and the seafloor alone.
     Check {
@@ -57,6 +63,16 @@ enum Command {
         #[arg(short, long, default_value = "mission.html")]
         out: PathBuf,
         /// Show the plan on this seafloor grid instead of the one the plan names.
+        #[arg(long)]
+        seafloor: Option<PathBuf>,
+    },
+    /// Draw the figures of a plan (PNG and SVG): floor, paths, links, time series, metrics.
+    Plot {
+        plan: PathBuf,
+        /// Output directory; default: `figures` beside the plan file.
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Draw over this seafloor grid instead of the one the plan names.
         #[arg(long)]
         seafloor: Option<PathBuf>,
     },
@@ -105,12 +121,26 @@ fn run(cli: Cli) -> Result<ExitCode> {
             mut set,
             seafloor,
             out,
+            plot: _,
+            no_plot,
         } => {
             if let Some(f) = seafloor {
                 set.push(format!("seafloor.file={}", toml_string(&f)));
             }
             let (s, source) = load_scenario(scenario.as_deref(), &set)?;
-            plan(&s, source, set, scenario.as_deref(), &out)
+            plan(&s, source, set, scenario.as_deref(), &out, !no_plot)
+        }
+        Command::Plot {
+            plan,
+            out,
+            seafloor,
+        } => {
+            let p = shoal::output::read_plan(&plan)?;
+            let floor = shoal::check::load_floor(&p, seafloor.as_deref())
+                .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
+            let dir = out.unwrap_or_else(|| base_dir(Some(&plan)).join("figures"));
+            plot(&p, &floor, &dir, true).with_context(|| format!("plotting {}", plan.display()))?;
+            Ok(ExitCode::SUCCESS)
         }
         Command::Check { plan, seafloor } => {
             let p = shoal::output::read_plan(&plan)?;
@@ -164,6 +194,28 @@ fn view(plan: &Path, seafloor: Option<&Path>, out: &Path) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// Draw every figure of `plan` into `dir`; one line per figure when `each`, else one in all.
+fn plot(
+    plan: &shoal::plan::Plan,
+    floor: &shoal::seafloor::Seafloor,
+    dir: &Path,
+    each: bool,
+) -> Result<()> {
+    let start = std::time::Instant::now();
+    let files = shoal::figures::write_all_with_progress(plan, floor, dir, |done| {
+        if each {
+            println!("  {:<13} {:>6.3} s", done.name, done.seconds);
+        }
+    })?;
+    println!(
+        "wrote {} figure files (PNG and SVG) in {} in {:.2} s",
+        files.len(),
+        dir.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 fn toml_string(p: &Path) -> String {
     format!("{:?}", p.to_string_lossy())
 }
@@ -185,6 +237,7 @@ fn plan(
     overrides: Vec<String>,
     scenario_path: Option<&Path>,
     out: &Path,
+    figures: bool,
 ) -> Result<ExitCode> {
     let (floor, floor_source) = shoal::planner::scenario_floor(s, base_dir(scenario_path))?;
     let input = shoal::planner::PlanInput {
@@ -229,6 +282,9 @@ fn plan(
         csvs.len(),
         out.display()
     );
+    if figures {
+        self::plot(&plan, &floor, &out.join("figures"), false)?;
+    }
     let report = shoal::check::check_plan(&plan, &floor);
     print!("{}", report.table());
     if report.passed() {

@@ -1,0 +1,217 @@
+//! Figures: `shoal plot` and `shoal plan --plot/--no-plot` write every figure as a PNG that
+//! decodes and an SVG that parses, with the axis labels in it; bad input names the file.
+
+use shoal::figures::{FIGURES, TABLE};
+use shoal::planner::{plan, scenario_floor, PlanInput};
+use shoal::scenario;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn shoal() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_shoal"))
+}
+
+/// A small plan (2 AUVs, 6 steps, 2 windows) written to `dir/plan.json`.
+fn small_plan(dir: &Path) -> (shoal::plan::Plan, PathBuf) {
+    let s = scenario::default_with(&[
+        "team.auvs=2".into(),
+        "horizon.steps=6".into(),
+        "windows=2".into(),
+    ])
+    .unwrap();
+    let (floor, source) = scenario_floor(&s, Path::new("")).unwrap();
+    let p = plan(&PlanInput {
+        scenario: &s,
+        floor: &floor,
+        scenario_source: "test".into(),
+        overrides: vec![],
+        seafloor_source: source,
+    })
+    .expect("plan");
+    let path = dir.join("plan.json");
+    shoal::output::write_plan(&p, &path).unwrap();
+    (p, path)
+}
+
+/// Axis labels (or, for the table, row labels) that each figure's SVG must contain.
+fn labels(stem: &str) -> &'static [&'static str] {
+    match stem {
+        "seafloor" | "step1-top" | "links-top" | "final-top" => {
+            &["x, east (m)", "y, north (m)", "floor elevation z (m)"]
+        }
+        "step1-3d" | "links-3d" | "final-3d" => &["x, east (m)", "y, north (m)", "z (m)"],
+        "link-lengths" => &["time t (s)", "link length (m)", "A2U link"],
+        "speed" => &["time t (s)", "speed (m/s)", "AUV 1", "USV"],
+        "heading-rate" => &["time t (s)", "heading rate", "mrad/s"],
+        "depth" => &["time t (s)", "z (m)", "AUV 0", "AUV 1"],
+        "metrics" => &["input energy", "explored area", "window 1", "mission"],
+        other => panic!("no labels listed for figure {other}"),
+    }
+}
+
+fn assert_figures(dir: &Path) {
+    for stem in FIGURES.iter().chain([&TABLE]) {
+        let png = dir.join(format!("{stem}.png"));
+        let bytes = std::fs::read(&png).unwrap_or_else(|e| panic!("{}: {e}", png.display()));
+        let mut reader = png::Decoder::new(std::io::Cursor::new(bytes))
+            .read_info()
+            .unwrap_or_else(|e| panic!("{stem}.png does not decode: {e}"));
+        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut buf).unwrap();
+        assert!(
+            info.width >= 800 && info.height >= 300,
+            "{stem}.png is {}×{}",
+            info.width,
+            info.height
+        );
+        let pixels = &buf[..info.buffer_size()];
+        let inked = pixels.chunks(3).filter(|p| p != &[255, 255, 255]).count();
+        assert!(inked * 50 > pixels.len() / 3, "{stem}.png is nearly blank");
+
+        let svg_path = dir.join(format!("{stem}.svg"));
+        let svg = std::fs::read_to_string(&svg_path).unwrap();
+        let doc = roxmltree::Document::parse(&svg)
+            .unwrap_or_else(|e| panic!("{stem}.svg is not XML: {e}"));
+        assert_eq!(doc.root_element().tag_name().name(), "svg");
+        let text: String = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .filter_map(|n| n.text())
+            .collect::<Vec<_>>()
+            .join("\n");
+        for label in labels(stem) {
+            assert!(text.contains(label), "{stem}.svg lacks \"{label}\"");
+        }
+        assert!(
+            text.contains("N = 2, seed 1, windows 0–1"),
+            "{stem}.svg: no scenario in title"
+        );
+        // Depth rasters are embedded as PNG data, not left as placeholders.
+        assert!(
+            !svg.contains("#010203"),
+            "{stem}.svg has a raster placeholder"
+        );
+    }
+}
+
+#[test]
+fn plot_writes_every_figure_as_png_and_svg_and_plan_plots_by_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, plan_path) = small_plan(dir.path());
+
+    // The library returns every path it wrote.
+    let floor = shoal::check::load_floor(&p, None).unwrap();
+    let lib_dir = dir.path().join("lib");
+    let written = shoal::figures::write_all(&p, &floor, &lib_dir).unwrap();
+    assert_eq!(written.len(), 2 * (FIGURES.len() + 1));
+    assert!(written.iter().all(|f| f.exists()));
+
+    // The command, with -o.
+    let out = dir.path().join("figs");
+    let st = shoal()
+        .arg("plot")
+        .arg(&plan_path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    assert_figures(&out);
+
+    // Without -o: `figures` beside the plan.
+    let st = shoal().arg("plot").arg(&plan_path).output().unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    assert!(dir.path().join("figures/final-top.png").exists());
+}
+
+#[test]
+fn plan_plots_unless_told_not_to() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |out: &Path, extra: &[&str]| {
+        let st = shoal()
+            .args([
+                "plan",
+                "--set",
+                "team.auvs=2",
+                "--set",
+                "horizon.steps=4",
+                "-o",
+            ])
+            .arg(out)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            st.status.success(),
+            "{}",
+            String::from_utf8_lossy(&st.stderr)
+        );
+    };
+    let with = dir.path().join("with");
+    run(&with, &[]);
+    assert!(with.join("figures/final-top.png").exists());
+    assert!(with.join("figures/metrics.svg").exists());
+    let without = dir.path().join("without");
+    run(&without, &["--no-plot"]);
+    assert!(without.join("plan.json").exists());
+    assert!(!without.join("figures").exists());
+}
+
+#[test]
+fn bad_plans_are_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("figs");
+    let plot = |plan: &Path| {
+        let st = shoal()
+            .arg("plot")
+            .arg(plan)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert_eq!(st.status.code(), Some(2));
+        String::from_utf8_lossy(&st.stderr).into_owned()
+    };
+
+    let missing = dir.path().join("missing.json");
+    let err = plot(&missing);
+    assert!(err.contains("missing.json"), "{err}");
+
+    let other = dir.path().join("other.json");
+    std::fs::write(&other, r#"{"format": "shoal-plan/1"}"#).unwrap();
+    let err = plot(&other);
+    assert!(
+        err.contains("other.json") && err.contains("shoal-plan/1"),
+        "{err}"
+    );
+
+    let broken = dir.path().join("broken.json");
+    std::fs::write(&broken, "{ not json").unwrap();
+    let err = plot(&broken);
+    assert!(err.contains("broken.json"), "{err}");
+    assert!(!out.exists(), "nothing is written for a bad plan");
+}
+
+#[test]
+fn a_plan_with_missing_vehicles_is_refused_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut p, _) = small_plan(dir.path());
+    p.windows[1].final_.auvs.pop();
+    let path = dir.path().join("cut.json");
+    shoal::output::write_plan(&p, &path).unwrap();
+    let st = shoal().arg("plot").arg(&path).output().unwrap();
+    let err = String::from_utf8_lossy(&st.stderr);
+    assert_eq!(st.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("cut.json") && err.contains("window 1 final has 1 AUVs"),
+        "{err}"
+    );
+}
