@@ -230,22 +230,42 @@ pub(crate) fn geographic(
     }
     let (mut a, mut b, mut c, mut d) = (0, nx - 1, 0, ny - 1); // i range a..=b, j range c..=d
     if !exact {
+        // The nodes inside the grid, then border lines with nodes outside it dropped, the line
+        // with the largest share of such nodes first (the footprint's edges are slightly
+        // curved in the frame).
+        let inside: Vec<(usize, usize)> = (0..nx * ny)
+            .filter(|&k| !out[k])
+            .map(|k| (k % nx, k / nx))
+            .collect();
+        if inside.is_empty() {
+            return Err(no_overlap());
+        }
+        a = inside.iter().map(|p| p.0).min().unwrap_or(0);
+        b = inside.iter().map(|p| p.0).max().unwrap_or(0);
+        c = inside.iter().map(|p| p.1).min().unwrap_or(0);
+        d = inside.iter().map(|p| p.1).max().unwrap_or(0);
         loop {
-            let col = |i: usize| (c..=d).any(|j| out[j * nx + i]);
-            let row = |j: usize| (a..=b).any(|i| out[j * nx + i]);
             if b <= a || d <= c {
                 return Err(no_overlap());
             }
-            if col(a) {
-                a += 1;
-            } else if col(b) {
-                b -= 1;
-            } else if row(c) {
-                c += 1;
-            } else if row(d) {
-                d -= 1;
-            } else {
+            let col =
+                |i: usize| (c..=d).filter(|&j| out[j * nx + i]).count() as f64 / (d - c + 1) as f64;
+            let row =
+                |j: usize| (a..=b).filter(|&i| out[j * nx + i]).count() as f64 / (b - a + 1) as f64;
+            let shares = [col(a), col(b), row(c), row(d)];
+            let (side, &worst) =
+                shares
+                    .iter()
+                    .enumerate()
+                    .fold((0, &0.0), |m, (k, v)| if *v > *m.1 { (k, v) } else { m });
+            if worst == 0.0 {
                 break;
+            }
+            match side {
+                0 => a += 1,
+                1 => b -= 1,
+                2 => c += 1,
+                _ => d -= 1,
             }
         }
         t.i0 += a as i64;
