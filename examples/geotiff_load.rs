@@ -4,7 +4,8 @@
 //! about 200 MB) in a temporary directory, as a geographic grid (15 arc-second cells, like a
 //! GEBCO tile) and as a projected one (50 m cells), stripped and tiled, then times a full scan
 //! (`seafloor info`), the mission-window loads the planner does, a whole-grid load, and depth
-//! queries. Not a test: it needs ~1 GB of disk and memory.
+//! queries. Not a test: it needs ~1 GB of disk and memory. SHOAL_DROP_CACHES=1 (as root)
+//! empties the page cache before each read, for cold-cache timings.
 
 use shoal::seafloor::{
     info, load, write_geotiff, Crs, GeoTiffOptions, Lattice, LoadOptions, Region, SampleType,
@@ -92,6 +93,7 @@ fn main() {
         write_geotiff(&path, &lattice, &z, &nodata, &crs, &opts).expect("write");
         let write = t.elapsed().as_secs_f64();
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0) as f64 / 1e6;
+        cold();
         let t = Instant::now();
         let i = info(&path, Values::Elevation).expect("info");
         let scan = t.elapsed().as_secs_f64();
@@ -112,6 +114,7 @@ fn main() {
             y_min: cy - r,
             y_max: cy + r,
         };
+        cold();
         let t = Instant::now();
         let w = load(
             &path,
@@ -122,15 +125,19 @@ fn main() {
         )
         .expect("window");
         let window = t.elapsed().as_secs_f64();
+        if k == 0 {
+            queries("mission window (geographic, resampled)", &w.floor);
+        }
         let whole = match crs {
             Crs::Geographic { .. } => "refused (beyond 250 km)".to_string(),
             _ => {
+                cold();
                 let t = Instant::now();
                 let all = load(&path, &LoadOptions::default()).expect("whole");
                 let s = t.elapsed().as_secs_f64();
                 assert_eq!(all.floor.nx(), n);
                 if k == 2 {
-                    queries(&all.floor);
+                    queries("whole projected grid", &all.floor);
                 }
                 format!("{s:.2} s")
             }
@@ -144,8 +151,18 @@ fn main() {
     }
 }
 
+/// With SHOAL_DROP_CACHES=1 (as root), empties the page cache so that the next read comes
+/// from disk (`sync; echo 3 > /proc/sys/vm/drop_caches`); otherwise the file is in the page
+/// cache, having just been written.
+fn cold() {
+    if std::env::var("SHOAL_DROP_CACHES").is_ok_and(|v| v == "1") {
+        let _ = std::process::Command::new("sync").status();
+        let _ = std::fs::write("/proc/sys/vm/drop_caches", "3");
+    }
+}
+
 /// Times bilinear depth queries on a loaded floor.
-fn queries(f: &shoal::seafloor::Seafloor) {
+fn queries(what: &str, f: &shoal::seafloor::Seafloor) {
     let e = f.extent();
     let m = 1_000_000;
     let t = Instant::now();
@@ -162,7 +179,9 @@ fn queries(f: &shoal::seafloor::Seafloor) {
     }
     let s = t.elapsed().as_secs_f64();
     eprintln!(
-        "depth query (elevation and gradient, random points over the whole grid): {:.0} ns each ({m} queries, checksum {acc:.3e})",
+        "depth query (elevation and gradient at random points) on the {what} ({} × {}): {:.0} ns each ({m} queries, checksum {acc:.3e})",
+        f.nx(),
+        f.ny(),
         s / m as f64 * 1e9
     );
 }
