@@ -275,6 +275,12 @@ impl TiffGrid {
         if nx == 0 || ny == 0 || i0 + nx > self.width || j0 + ny > self.height {
             return Err(self.fail(format!("window {win:?} is not inside the grid")));
         }
+        if nx * ny > super::load::MAX_LOAD_NODES {
+            return Err(self.fail(format!(
+                "a window of {nx} × {ny} nodes: at most {} are loaded at once",
+                super::load::MAX_LOAD_NODES
+            )));
+        }
         let (ra, rb) = (self.tiff_row(j0), self.tiff_row(j0 + ny - 1));
         let (r0, r1) = (ra.min(rb), ra.max(rb));
         let (c0, c1) = (i0, i0 + nx - 1);

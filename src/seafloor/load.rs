@@ -24,6 +24,10 @@ use super::{Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+/// Largest number of nodes loaded at once (about 3.6 GB of values and mask): far beyond any
+/// mission window, and a guard against a file whose header claims an absurd size.
+pub const MAX_LOAD_NODES: usize = 400_000_000;
+
 /// Regular nodes: (x0 + i·dx, y0 + j·dy), i < nx, j < ny, j = 0 the southernmost row; in the
 /// units of the grid's CRS (metres, or degrees of longitude and latitude).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -424,10 +428,11 @@ fn native_window(l: &Lattice, region: Region) -> Result<NodeWindow, String> {
         }
     };
     let (nx, ny) = (i1 - i0 + 1, j1 - j0 + 1);
-    if nx > MAX_NODES_PER_AXIS || ny > MAX_NODES_PER_AXIS {
+    if nx > MAX_NODES_PER_AXIS || ny > MAX_NODES_PER_AXIS || nx * ny > MAX_LOAD_NODES {
         return Err(format!(
             "the mission area needs {nx} × {ny} nodes of this grid; at most \
-             {MAX_NODES_PER_AXIS} per axis (fewer windows or steps, or a coarser grid)"
+             {MAX_NODES_PER_AXIS} per axis and {MAX_LOAD_NODES} in all (fewer windows or steps, \
+             or a coarser grid)"
         ));
     }
     Ok(NodeWindow { i0, j0, nx, ny })

@@ -4,7 +4,7 @@
 use super::geo::LocalFrame;
 use super::load::{
     apply, count_signs, frame_for, GridFile, Lattice, LoadOptions, NodeWindow, Region,
-    MAX_WINDOW_DISTANCE,
+    MAX_LOAD_NODES, MAX_WINDOW_DISTANCE,
 };
 use super::{Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
 
@@ -153,9 +153,13 @@ pub(crate) fn geographic(
                 .to_string(),
         )
     };
-    if t.nx() > MAX_NODES_PER_AXIS || t.ny() > MAX_NODES_PER_AXIS {
+    if t.nx() > MAX_NODES_PER_AXIS
+        || t.ny() > MAX_NODES_PER_AXIS
+        || t.nx() * t.ny() > MAX_LOAD_NODES
+    {
         return Err(fail(format!(
-            "the area needs {} × {} nodes of {dx} × {dy} m; at most {MAX_NODES_PER_AXIS} per axis",
+            "the area needs {} × {} nodes of {dx} × {dy} m; at most {MAX_NODES_PER_AXIS} per axis \
+             and {MAX_LOAD_NODES} in all",
             t.nx(),
             t.ny()
         )));
