@@ -136,7 +136,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 .warnings
                 .iter()
                 .for_each(|w| eprintln!("warning: {w}"));
-            export_floor(&floor, &source, &out)?;
+            shoal::output::write_floor(&floor, &source, &out)?;
             let (lo, hi) = floor.z_range();
             println!(
                 "wrote {} ({} × {} nodes, {} m cells, z from {lo:.1} to {hi:.1} m)",
@@ -160,48 +160,6 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
     }
-}
-
-/// Writes a floor by the file name's extension: a GeoTIFF keeps the source's projected CRS; a
-/// floor resampled from a geographic grid is written in its local frame (a user-defined CRS
-/// whose citation names the origin).
-fn export_floor(
-    floor: &shoal::seafloor::Seafloor,
-    source: &shoal::planner::FloorSource,
-    out: &Path,
-) -> Result<()> {
-    use shoal::seafloor::{Crs, GridFormat};
-    match GridFormat::from_path(out) {
-        Some(GridFormat::GeoTiff) => {
-            let (crs, citation) = match (source.origin, source.crs.strip_prefix("EPSG:")) {
-                (Some([lat, lon]), _) => (
-                    Crs::Projected {
-                        epsg: None,
-                        citation: None,
-                    },
-                    Some(format!(
-                        "shoal local tangent plane (x east, y north, metres) at {lat}, {lon} \
-                         (WGS84)"
-                    )),
-                ),
-                (None, Some(code)) => (
-                    Crs::Projected {
-                        epsg: code.parse().ok(),
-                        citation: None,
-                    },
-                    None,
-                ),
-                (None, None) => (Crs::None, None),
-            };
-            floor.write_geotiff(out, &crs, citation.as_deref())?
-        }
-        Some(GridFormat::EsriAscii) => floor.write_esri_ascii(out)?,
-        None => bail!(
-            "{}: unknown grid format; expected .asc (ESRI ASCII) or .tif/.tiff (GeoTIFF)",
-            out.display()
-        ),
-    }
-    Ok(())
 }
 
 fn toml_string(p: &Path) -> String {
