@@ -36,7 +36,7 @@ enum Command {
         /// Override one key, e.g. --set team.auvs=7 (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
-        /// Seafloor grid (ESRI ASCII .asc); same as --set seafloor.file=PATH.
+        /// Seafloor grid (ESRI ASCII .asc or GeoTIFF .tif); same as --set seafloor.file=PATH.
         #[arg(long)]
         seafloor: Option<PathBuf>,
         /// Output directory.
@@ -85,7 +85,9 @@ enum Command {
 
 #[derive(Subcommand)]
 enum SeafloorCommand {
-    /// Write the scenario's seafloor (default: the synthetic one) as an ESRI ASCII grid.
+    /// Write the scenario's seafloor as the planner uses it (default: the synthetic one; a grid
+    /// file cut to the mission window, in metres) as an ESRI ASCII grid (.asc) or a GeoTIFF
+    /// (.tif, .tiff).
     Export {
         /// Scenario file; the embedded default when absent.
         scenario: Option<PathBuf>,
@@ -93,6 +95,14 @@ enum SeafloorCommand {
         set: Vec<String>,
         #[arg(short, long, default_value = "seafloor.asc")]
         out: PathBuf,
+    },
+    /// Describe a grid file: size, extent, CRS, depth range, NODATA and land, suggested origin.
+    Info {
+        /// Grid file (.asc, .tif, .tiff).
+        file: PathBuf,
+        /// Sign convention of the values: elevation (negative below sea level) or depth.
+        #[arg(long, default_value = "elevation", value_parser = ["elevation", "depth"])]
+        values: String,
     },
 }
 
@@ -165,8 +175,13 @@ fn run(cli: Cli) -> Result<ExitCode> {
             command: SeafloorCommand::Export { scenario, set, out },
         } => {
             let (s, _) = load_scenario(scenario.as_deref(), &set)?;
-            let (floor, _) = shoal::planner::scenario_floor(&s, base_dir(scenario.as_deref()))?;
-            floor.write_esri_ascii(&out)?;
+            let (floor, source) =
+                shoal::planner::scenario_floor(&s, base_dir(scenario.as_deref()))?;
+            source
+                .warnings
+                .iter()
+                .for_each(|w| eprintln!("warning: {w}"));
+            shoal::output::write_floor(&floor, &source, &out)?;
             let (lo, hi) = floor.z_range();
             println!(
                 "wrote {} ({} × {} nodes, {} m cells, z from {lo:.1} to {hi:.1} m)",
@@ -175,6 +190,18 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 floor.ny(),
                 floor.dx()
             );
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Seafloor {
+            command: SeafloorCommand::Info { file, values },
+        } => {
+            let values = match values.as_str() {
+                "depth" => shoal::seafloor::Values::Depth,
+                _ => shoal::seafloor::Values::Elevation,
+            };
+            let info = shoal::seafloor::info(&file, values)?;
+            print!("{info}");
+            info.warnings.iter().for_each(|w| eprintln!("warning: {w}"));
             Ok(ExitCode::SUCCESS)
         }
     }
@@ -240,6 +267,10 @@ fn plan(
     figures: bool,
 ) -> Result<ExitCode> {
     let (floor, floor_source) = shoal::planner::scenario_floor(s, base_dir(scenario_path))?;
+    floor_source
+        .warnings
+        .iter()
+        .for_each(|w| eprintln!("warning: {w}"));
     let input = shoal::planner::PlanInput {
         scenario: s,
         floor: &floor,

@@ -141,3 +141,46 @@ pub fn write_csvs(plan: &Plan, dir: &Path) -> Result<Vec<PathBuf>, OutputError> 
     }
     Ok(written)
 }
+
+/// Writes a floor (`shoal seafloor export`) by the file name's extension: a GeoTIFF keeps the source's projected CRS; a
+/// floor resampled from a geographic grid is written in its local frame (a user-defined CRS
+/// whose citation names the origin).
+pub fn write_floor(
+    floor: &crate::seafloor::Seafloor,
+    source: &crate::planner::FloorSource,
+    out: &Path,
+) -> Result<(), crate::seafloor::SeafloorError> {
+    use crate::seafloor::{Crs, GridFormat, SeafloorError};
+    match GridFormat::from_path(out) {
+        Some(GridFormat::GeoTiff) => {
+            let (crs, citation) = match (source.origin, source.crs.strip_prefix("EPSG:")) {
+                (Some([lat, lon]), _) => (
+                    Crs::Projected {
+                        epsg: None,
+                        citation: None,
+                    },
+                    Some(format!(
+                        "shoal local tangent plane (x east, y north, metres) at {lat}, {lon} \
+                         (WGS84)"
+                    )),
+                ),
+                (None, Some(code)) => (
+                    Crs::Projected {
+                        epsg: code.parse().ok(),
+                        citation: None,
+                    },
+                    None,
+                ),
+                (None, None) => (Crs::None, None),
+            };
+            floor.write_geotiff(out, &crs, citation.as_deref())?
+        }
+        Some(GridFormat::EsriAscii) => floor.write_esri_ascii(out)?,
+        None => {
+            return Err(SeafloorError::Format {
+                path: out.display().to_string(),
+            })
+        }
+    }
+    Ok(())
+}

@@ -52,6 +52,23 @@ pub struct SeafloorRecord {
     pub z_max: f64,
     /// Hex digest of the node values (see `Seafloor::fingerprint`).
     pub fingerprint: String,
+    /// "synthetic", "esri-ascii" or "geotiff" ("" in plans written before it was recorded).
+    #[serde(default)]
+    pub format: String,
+    /// CRS of the grid file: "EPSG:<code>", "projected (user-defined)", "geographic
+    /// (user-defined)" or "none" (synthetic, ESRI ASCII, a GeoTIFF without GeoKeys).
+    #[serde(default = "crs_none")]
+    pub crs: String,
+    /// Sign convention of the file's values ("elevation" or "depth").
+    #[serde(default)]
+    pub values: crate::seafloor::Values,
+    /// [latitude, longitude] of the local frame's origin when the grid is geographic.
+    #[serde(default)]
+    pub origin: Option<[f64; 2]>,
+}
+
+fn crs_none() -> String {
+    "none".into()
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

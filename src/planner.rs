@@ -11,7 +11,7 @@ use crate::plan::{
 };
 use crate::scenario::Scenario;
 use crate::scp::ScpOutcome;
-use crate::seafloor::{Seafloor, SeafloorError};
+use crate::seafloor::{GridFormat, LoadOptions, Region, Seafloor, SeafloorError, Values};
 use crate::step3::LinkSet;
 use crate::team::TeamProblem;
 use crate::trajectory::Start;
@@ -109,8 +109,52 @@ pub struct PlanInput<'a> {
     /// "embedded default" or the scenario file's path.
     pub scenario_source: String,
     pub overrides: Vec<String>,
-    /// "synthetic" or "file", and the file's path.
-    pub seafloor_source: (String, Option<String>),
+    /// Where the floor came from.
+    pub seafloor_source: FloorSource,
+}
+
+/// Where a floor came from, as the plan records it, and what the loader had to say.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FloorSource {
+    /// "synthetic" or "file".
+    pub source: String,
+    /// The file's path (absolute when the planner loaded it).
+    pub path: Option<String>,
+    /// "synthetic", "esri-ascii" or "geotiff".
+    pub format: String,
+    /// The file's CRS ("none", "EPSG:4326", …).
+    pub crs: String,
+    pub values: Values,
+    /// [lat, lon] of the local frame's origin for a geographic grid.
+    pub origin: Option<[f64; 2]>,
+    /// Warnings of the loader (likely sign-convention mistakes, datum assumptions), for the
+    /// user; not recorded in the plan.
+    pub warnings: Vec<String>,
+}
+
+impl FloorSource {
+    /// The synthetic floor.
+    pub fn synthetic() -> FloorSource {
+        FloorSource {
+            source: "synthetic".into(),
+            path: None,
+            format: "synthetic".into(),
+            crs: "none".into(),
+            values: Values::Elevation,
+            origin: None,
+            warnings: Vec::new(),
+        }
+    }
+
+    /// An ESRI ASCII grid file of elevations in metres (no CRS).
+    pub fn file(path: Option<String>) -> FloorSource {
+        FloorSource {
+            source: "file".into(),
+            path,
+            format: GridFormat::EsriAscii.name().into(),
+            ..FloorSource::synthetic()
+        }
+    }
 }
 
 /// The window's start must satisfy the constraints that no input can change at k = 0.
@@ -128,6 +172,9 @@ pub fn check_start(
             s.team.auvs
         ));
     }
+    if let Some(why) = position_problem(floor, start.usv[0], start.usv[1]) {
+        return bad(format!("the USV {why}"));
+    }
     for (n, a) in start.auvs.iter().enumerate() {
         let p = a.position;
         let d =
@@ -144,13 +191,8 @@ pub fn check_start(
                 p[2], -s.auv.surface_clearance
             ));
         }
-        if !floor.contains(p[0], p[1]) {
-            return bad(format!(
-                "AUV {n} at ({:.1}, {:.1}) is outside the seafloor grid {:?}",
-                p[0],
-                p[1],
-                floor.extent()
-            ));
+        if let Some(why) = position_problem(floor, p[0], p[1]) {
+            return bad(format!("AUV {n} {why}"));
         }
         let z = floor.elevation(p[0], p[1])?;
         if p[2] < z + s.auv.floor_clearance - s.scp.feasibility_tol {
@@ -168,6 +210,23 @@ pub fn check_start(
         }
     }
     Ok(())
+}
+
+/// Why a vehicle cannot start at (x, y): outside the grid, or in an obstacle cell (NODATA,
+/// land). The text starts with the position.
+fn position_problem(floor: &Seafloor, x: f64, y: f64) -> Option<String> {
+    let at = format!("at ({x:.1}, {y:.1})");
+    if !floor.contains(x, y) {
+        return Some(format!(
+            "{at} is outside the seafloor grid, which covers {}",
+            floor.extent()
+        ));
+    }
+    match floor.obstacle(x, y) {
+        Ok(None) => None,
+        Ok(Some(o)) => Some(format!("{at} is {o}")),
+        Err(e) => Some(format!("{at}: {e}")),
+    }
 }
 
 /// Algorithm 1, line 5: USV at the origin; AUVs at seeded random points in the half ball of
@@ -188,6 +247,15 @@ pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, Pla
                 .collect(),
         });
     }
+    if let Some(why) = position_problem(floor, 0.0, 0.0) {
+        return Err(PlanError::InvalidStart {
+            window: 0,
+            why: format!(
+                "the USV {why} (without [initial] the USV starts at the origin of the frame; \
+                 give [initial] positions inside the grid)"
+            ),
+        });
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(s.seed);
     let ds = s.acoustic.sonar_range;
     let mut auvs = Vec::with_capacity(s.team.auvs);
@@ -203,7 +271,7 @@ pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, Pla
             if p.iter().map(|c| c * c).sum::<f64>() > ds * ds || p[2] > -s.auv.surface_clearance {
                 continue;
             }
-            if !floor.contains(p[0], p[1]) {
+            if !floor.contains(p[0], p[1]) || floor.is_obstacle(p[0], p[1])? {
                 continue;
             }
             if p[2] >= floor.elevation(p[0], p[1])? + s.auv.floor_clearance {
@@ -231,23 +299,74 @@ pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, Pla
     })
 }
 
+/// The rectangle of the planner's frame that the mission can reach, [x_min, x_max, y_min,
+/// y_max], metres: the bounding box of the start (the explicit `[initial]` positions, or the
+/// USV at the origin with the AUVs within d_s of it), widened by twice the distance the fastest
+/// vehicle covers at its speed limit over every window (speed limits hold at the samples; the
+/// factor 2 covers the path between samples), plus d_max and the swath width.
+pub fn mission_area(s: &Scenario) -> [f64; 4] {
+    let mut pts: Vec<[f64; 2]> = Vec::new();
+    match &s.initial {
+        Some(init) => {
+            pts.push(init.usv);
+            pts.extend(init.auvs.iter().map(|p| [p[0], p[1]]));
+        }
+        None => {
+            let d = s.acoustic.sonar_range;
+            pts.extend([[-d, -d], [d, d]]);
+        }
+    }
+    let span = (s.windows * s.horizon.steps) as f64 * s.horizon.dt;
+    let reach = 2.0 * span * s.auv.max_speed.max(s.usv.max_speed)
+        + s.acoustic.max_range.max(s.acoustic.sonar_range)
+        + s.auv.swath_width;
+    let fold = |f: fn(f64, f64) -> f64, d: usize, init: f64| pts.iter().map(|p| p[d]).fold(init, f);
+    [
+        fold(f64::min, 0, f64::INFINITY) - reach,
+        fold(f64::max, 0, f64::NEG_INFINITY) + reach,
+        fold(f64::min, 1, f64::INFINITY) - reach,
+        fold(f64::max, 1, f64::NEG_INFINITY) + reach,
+    ]
+}
+
 /// The seafloor a scenario names: the grid file (a relative path is taken from `base_dir`, the
-/// scenario file's directory) or the synthetic floor. Returns it with its source record.
+/// scenario file's directory), cut to the [`mission_area`], or the synthetic floor. Returns it
+/// with its source record (and the loader's warnings).
 pub fn scenario_floor(
     s: &Scenario,
     base_dir: &std::path::Path,
-) -> Result<(Seafloor, (String, Option<String>)), PlanError> {
+) -> Result<(Seafloor, FloorSource), PlanError> {
     match &s.seafloor.file {
         Some(f) => {
             let path = base_dir.join(f);
-            let floor = Seafloor::read_esri_ascii(&path)?;
+            let [x_min, x_max, y_min, y_max] = mission_area(s);
+            let opts = LoadOptions {
+                values: s.seafloor.values,
+                origin: s.seafloor.origin,
+                region: Region::Area {
+                    x_min,
+                    x_max,
+                    y_min,
+                    y_max,
+                },
+            };
+            let l = crate::seafloor::load(&path, &opts)?;
             // recorded absolute, so that `shoal check` finds it from any working directory
             let recorded = std::fs::canonicalize(&path).unwrap_or(path);
-            Ok((floor, ("file".into(), Some(recorded.display().to_string()))))
+            let source = FloorSource {
+                source: "file".into(),
+                path: Some(recorded.display().to_string()),
+                format: l.format.name().into(),
+                crs: l.crs.to_string(),
+                values: l.values,
+                origin: l.origin,
+                warnings: l.warnings,
+            };
+            Ok((l.floor, source))
         }
         None => Ok((
             Seafloor::synthetic(&s.seafloor.synthetic, s.seed)?,
-            ("synthetic".into(), None),
+            FloorSource::synthetic(),
         )),
     }
 }
@@ -397,8 +516,12 @@ pub fn plan_with_progress(
         overrides: input.overrides.clone(),
         scenario: s.clone(),
         seafloor: SeafloorRecord {
-            source: input.seafloor_source.0.clone(),
-            path: input.seafloor_source.1.clone(),
+            source: input.seafloor_source.source.clone(),
+            path: input.seafloor_source.path.clone(),
+            format: input.seafloor_source.format.clone(),
+            crs: input.seafloor_source.crs.clone(),
+            values: input.seafloor_source.values,
+            origin: input.seafloor_source.origin,
             nx: floor.nx(),
             ny: floor.ny(),
             x0: floor.x0(),

@@ -2,12 +2,12 @@
 //! calls the planner; the checker itself never does.)
 
 use shoal::check::check_plan;
-use shoal::planner::{plan, scenario_floor, PlanInput};
+use shoal::planner::{plan, scenario_floor, FloorSource, PlanInput};
 use shoal::scenario::Scenario;
 use shoal::seafloor::Seafloor;
 
 /// Plan `s` over `f` (the test's own floor, recorded as a file floor).
-fn plan_on(s: &Scenario, f: &Seafloor, source: (String, Option<String>)) -> shoal::plan::Plan {
+fn plan_on(s: &Scenario, f: &Seafloor, source: FloorSource) -> shoal::plan::Plan {
     let input = PlanInput {
         scenario: s,
         floor: f,
@@ -44,7 +44,7 @@ fn the_planners_plan_passes_the_check() {
     // refuse the end of window 0, which its SCP accepted within scp.feasibility_tol = 1e-3 m.
     s.windows = 1;
     let f = floor();
-    let p = plan_on(&s, &f, ("file".into(), None));
+    let p = plan_on(&s, &f, FloorSource::file(None));
     let r = check_plan(&p, &f);
     assert!(r.passed(), "\n{}", r.table());
 
@@ -83,7 +83,7 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
         usv: [0.0, 0.0],
         auvs: vec![[30.0, 0.0, -60.0], [-20.0, 40.0, -70.0]],
     });
-    let p = plan_on(&s, &f, ("file".into(), None));
+    let p = plan_on(&s, &f, FloorSource::file(None));
     assert!(check_plan(&p, &f).passed());
 
     let (kk, dt) = (s.horizon.steps, s.horizon.dt);

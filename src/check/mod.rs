@@ -86,7 +86,7 @@ mod objective;
 mod run;
 
 use crate::plan::{ObjectiveTerms, Plan};
-use crate::seafloor::{Seafloor, SeafloorError};
+use crate::seafloor::{load, LoadOptions, Region, Seafloor, SeafloorError};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -392,22 +392,40 @@ pub enum CheckError {
 /// Load the floor the plan names: regenerate the synthetic one from
 /// `plan.scenario.seafloor.synthetic` and `plan.scenario.seed`, or read `plan.seafloor.path`
 /// (the planner records it as an absolute path; a relative one resolves against the current
-/// directory);
-/// `override_path` (an ESRI ASCII grid) replaces it. The floor must have the fingerprint the
-/// plan records, otherwise [`CheckError::FingerprintMismatch`].
+/// directory); `override_path` (a grid file: .asc, .tif, .tiff) replaces it. A file is loaded
+/// as the planner loaded it: the recorded sign convention (`values`) and, for a geographic
+/// grid, the recorded frame origin; and only the recorded node lattice (`nx`, `ny`, `x0`, `y0`)
+/// is read, or the whole file when it does not hold that lattice. The floor must have the
+/// fingerprint the plan records, otherwise [`CheckError::FingerprintMismatch`].
 pub fn load_floor(plan: &Plan, override_path: Option<&Path>) -> Result<Seafloor, CheckError> {
+    let rec = &plan.seafloor;
     let read = |path: &Path| {
-        Seafloor::read_esri_ascii(path).map_err(|source| CheckError::ReadFloor {
+        let opts = |region| LoadOptions {
+            values: rec.values,
+            origin: rec.origin,
+            region,
+        };
+        let window = Region::Nodes {
+            x0: rec.x0,
+            y0: rec.y0,
+            nx: rec.nx,
+            ny: rec.ny,
+        };
+        match load(path, &opts(window)) {
+            Err(SeafloorError::Region { .. }) => load(path, &opts(Region::All)),
+            r => r,
+        }
+        .map(|l| l.floor)
+        .map_err(|source| CheckError::ReadFloor {
             path: path.to_path_buf(),
             source,
         })
     };
     let (floor, origin) = match override_path {
         Some(path) => (read(path)?, path.display().to_string()),
-        None => match plan.seafloor.source.as_str() {
+        None => match rec.source.as_str() {
             "file" => {
-                let path = plan
-                    .seafloor
+                let path = rec
                     .path
                     .as_deref()
                     .or(plan.scenario.seafloor.file.as_deref())
@@ -424,10 +442,10 @@ pub fn load_floor(plan: &Plan, override_path: Option<&Path>) -> Result<Seafloor,
         },
     };
     let found = floor.fingerprint();
-    if found != plan.seafloor.fingerprint {
+    if found != rec.fingerprint {
         return Err(CheckError::FingerprintMismatch {
             origin,
-            expected: plan.seafloor.fingerprint.clone(),
+            expected: rec.fingerprint.clone(),
             found,
         });
     }

@@ -181,9 +181,15 @@ pub struct Weights {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SeafloorSpec {
-    /// Path of an ESRI ASCII grid (.asc, metres, elevation: negative below sea level). When
-    /// absent the synthetic floor below is generated.
+    /// Path of a grid file: ESRI ASCII (.asc) or GeoTIFF (.tif, .tiff), metres. When absent the
+    /// synthetic floor below is generated.
     pub file: Option<String>,
+    /// The sign convention of the file's values: elevation (negative below sea level, GEBCO)
+    /// or depth (positive down; negated on load).
+    pub values: crate::seafloor::Values,
+    /// Mission origin [latitude, longitude], degrees, of the local metric frame of a
+    /// geographic grid (default: the grid's centre). Only for geographic grids.
+    pub origin: Option<[f64; 2]>,
     pub synthetic: crate::seafloor::SyntheticParams,
 }
 

@@ -1,13 +1,17 @@
 //! The shape of a scenario file, derived from the types themselves: the default scenario with
-//! every optional part filled in (an example `[initial]`, an example `seafloor.file`) serialised
+//! every optional part filled in (an example `[initial]`, `seafloor.file` and `seafloor.origin`)
+//! serialised
 //! to a TOML document. Used to list the keys allowed at each level, to name the type a key
 //! expects, and to generate the template, so that no key or default value is written twice.
 
 use super::{DepthObjective, Discretisation, Initial, Scenario, UsvObjective};
+use crate::seafloor::Values;
 use toml_edit::{DocumentMut, Item, TableLike, Value};
 
 /// Example path shown (commented out) for `seafloor.file` in the template.
-pub(crate) const EXAMPLE_FLOOR_FILE: &str = "bathymetry.asc";
+pub(crate) const EXAMPLE_FLOOR_FILE: &str = "bathymetry.tif";
+/// Example mission origin (latitude, longitude) shown (commented out) for `seafloor.origin`.
+pub(crate) const EXAMPLE_ORIGIN: [f64; 2] = [43.2, 5.3];
 
 /// An `[initial]` block valid for `s`: the AUVs evenly spread on a circle of radius d_s/2 around
 /// the origin (where the USV starts), halfway between the surface and the shallowest synthetic
@@ -41,6 +45,7 @@ pub(crate) fn full_default() -> Scenario {
     let mut s = Scenario::default();
     s.initial = Some(example_initial(&s));
     s.seafloor.file = Some(EXAMPLE_FLOOR_FILE.to_string());
+    s.seafloor.origin = Some(EXAMPLE_ORIGIN);
     s
 }
 
@@ -225,6 +230,7 @@ pub(crate) fn enum_values(key: &str) -> Option<Vec<String>> {
         "auv.discretisation" => Some(names(&[Discretisation::Zoh, Discretisation::Euler])),
         "usv.objective" => Some(names(&[UsvObjective::Away, UsvObjective::Destination])),
         "weights.of1_2" => Some(names(&[DepthObjective::Height, DepthObjective::Depth])),
+        "seafloor.values" => Some(names(&[Values::Elevation, Values::Depth])),
         _ => None,
     }
 }

@@ -145,11 +145,29 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "seafloor" => {
             "The seafloor Z(x, y), whose obstacles p_Ω^3D enter C1_12 / C1_13 (C2_2 in Step 1): \
-             an ESRI ASCII grid file, or the synthetic floor of Fig. 4(a) below."
+             a grid file (ESRI ASCII or GeoTIFF), or the synthetic floor of Fig. 4(a) below. \
+             NODATA and land (z ≥ 0) cells are obstacles. Only the mission window (what the \
+             vehicles can reach from their start in every window) is loaded from a file."
         }
         "seafloor.file" => {
-            "Path of an ESRI ASCII grid (.asc; metres; elevation, negative below sea level). \
-             When absent the synthetic floor below is generated."
+            "Path of a grid file (relative paths from this file's directory): ESRI ASCII \
+             (.asc; no CRS: coordinates in metres) or GeoTIFF (.tif, .tiff; float32/64, \
+             int16/32, uint16; its CRS from the GeoKeys). A projected grid (e.g. UTM) is used in \
+             its own coordinates, so give [initial] positions inside it; a geographic grid \
+             (degrees, EPSG:4326) is resampled onto the local tangent plane at `origin`. When \
+             absent the synthetic floor below is generated."
+        }
+        "seafloor.values" => {
+            "Sign convention of the file's values: \"elevation\" (metres, negative below sea \
+             level, as GEBCO; default) or \"depth\" (metres, positive down; negated on load). A \
+             grid that is mostly of the other sign gets a warning."
+        }
+        "seafloor.origin" => {
+            "Mission origin [latitude, longitude], degrees (WGS84), of a geographic grid: the \
+             point (0, 0) of the planner's frame (x east, y north, metres, on the local tangent \
+             plane; length error 4 mm at 10 km and 0.5 m at 50 km from it). Default: the grid's \
+             centre (`shoal seafloor info FILE` prints it). Only for geographic grids. \
+             |latitude| ≤ 85."
         }
         "seafloor.synthetic" => {
             "Synthetic floor (Fig. 4(a)): a sloping plane with Gaussian seamounts and valleys \
@@ -327,7 +345,8 @@ fn join(path: &str, k: &str) -> String {
 
 /// The default scenario as a commented TOML file: every key with its default value and a
 /// comment giving its meaning, unit and symbol in the paper, grouped by section. Optional keys
-/// (`seafloor.file`, the `[initial]` section) are shown commented out, with an example.
+/// (`seafloor.file`, `seafloor.origin`, the `[initial]` section) are shown commented out, with
+/// an example.
 pub fn default_toml() -> String {
     let full = Schema::new();
     let defaults = schema::to_document(&Scenario::default());

@@ -100,6 +100,7 @@ fn template_uncommented() -> String {
         }
         let toml_line = [
             "# file = ",
+            "# origin = ",
             "# [initial]",
             "# usv = ",
             "# auvs = ",
@@ -108,7 +109,8 @@ fn template_uncommented() -> String {
         ]
         .iter()
         .any(|p| line.starts_with(p));
-        let l = if toml_line && (in_initial || line.starts_with("# file = ")) {
+        let seafloor_key = line.starts_with("# file = ") || line.starts_with("# origin = ");
+        let l = if toml_line && (in_initial || seafloor_key) {
             line.strip_prefix("# ").unwrap_or(line)
         } else {
             line
@@ -181,7 +183,9 @@ fn template_values_come_from_default() {
         "sonar_range = {:?}",
         Scenario::default().acoustic.sonar_range
     )));
-    assert!(text.contains("# file = \"bathymetry.asc\""));
+    assert!(text.contains("# file = \"bathymetry.tif\""));
+    assert!(text.contains("# origin = [43.2, 5.3]"));
+    assert!(text.contains("values = \"elevation\""));
     assert!(text.contains("# [initial]"));
 }
 

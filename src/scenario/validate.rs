@@ -287,14 +287,47 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
 
     // Seafloor.
     if let Some(f) = &s.seafloor.file {
-        if f.trim().is_empty() {
+        if f.trim().is_empty()
+            || crate::seafloor::GridFormat::from_path(std::path::Path::new(f)).is_none()
+        {
             c.push(
                 "seafloor.file",
                 format!("{f:?}"),
-                "must be the path of an ESRI ASCII grid (leave the key out to use the \
-                 synthetic floor)"
+                "must be the path of a grid file: an ESRI ASCII grid (.asc) or a GeoTIFF \
+                 (.tif, .tiff) (leave the key out to use the synthetic floor)"
                     .to_string(),
                 &[],
+            );
+        }
+    } else if s.seafloor.values != crate::seafloor::Values::Elevation {
+        c.push(
+            "seafloor.values",
+            "\"depth\"".to_string(),
+            "applies to a grid file (seafloor.file); the synthetic floor is made of elevations"
+                .to_string(),
+            &["seafloor.file"],
+        );
+    }
+    if let Some(o) = s.seafloor.origin {
+        let max = crate::seafloor::geo::MAX_ORIGIN_LATITUDE;
+        if !(o[0].is_finite() && o[0].abs() <= max && o[1].is_finite() && o[1].abs() <= 360.0) {
+            c.push(
+                "seafloor.origin",
+                arr(&o),
+                format!(
+                    "must be [latitude, longitude] in degrees, |latitude| ≤ {max}, \
+                     |longitude| ≤ 360"
+                ),
+                &[],
+            );
+        } else if s.seafloor.file.is_none() {
+            c.push(
+                "seafloor.origin",
+                arr(&o),
+                "applies to a geographic grid file (seafloor.file); the synthetic floor is \
+                 already in metres"
+                    .to_string(),
+                &["seafloor.file"],
             );
         }
     }

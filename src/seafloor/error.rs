@@ -66,6 +66,21 @@ pub enum SeafloorError {
         reason: String,
     },
 
+    /// A GeoTIFF cannot be read or written: malformed, unsupported, or not georeferenced.
+    #[error("{path}: {reason}")]
+    GeoTiff { path: String, reason: String },
+
+    /// A grid file's name has no known extension.
+    #[error(
+        "{path}: unknown grid format; expected an ESRI ASCII grid (.asc) or a GeoTIFF (.tif, .tiff)"
+    )]
+    Format { path: String },
+
+    /// The part of a grid that was asked for cannot be loaded: the mission area does not overlap
+    /// the grid, is too large, or the grid does not hold the lattice a plan records.
+    #[error("{path}: {reason}")]
+    Region { path: String, reason: String },
+
     /// Reading or writing a grid file failed.
     #[error("{path}: {source}")]
     Io {

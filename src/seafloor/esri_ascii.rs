@@ -114,6 +114,20 @@ impl Seafloor {
     }
 }
 
+/// The values and NODATA flags of a block of a grid's nodes (south to north), for
+/// [`super::load`]. The block must lie inside the grid.
+pub(crate) fn window(f: &Seafloor, w: super::NodeWindow) -> (Vec<f64>, Vec<bool>) {
+    let (z, m) = f.nodes();
+    let mut values = Vec::with_capacity(w.nx * w.ny);
+    let mut nodata = Vec::with_capacity(w.nx * w.ny);
+    for j in w.j0..w.j0 + w.ny {
+        let row = j * f.nx() + w.i0;
+        values.extend_from_slice(&z[row..row + w.nx]);
+        nodata.extend_from_slice(&m[row..row + w.nx]);
+    }
+    (values, nodata)
+}
+
 /// What the header says.
 struct Header {
     nx: usize,

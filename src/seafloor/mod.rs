@@ -27,14 +27,29 @@
 //!   obstacle test and the value all use that one cell.
 //! - **Elevations** of data nodes must lie within ±[`MAX_ABS_ELEVATION`] metres.
 //!
-//! Grids come from [`Seafloor::from_nodes`], [`Seafloor::synthetic`] (the paper's Fig. 4(a))
-//! or an ESRI ASCII file ([`Seafloor::read_esri_ascii`]).
+//! Grids come from [`Seafloor::from_nodes`], [`Seafloor::synthetic`] (the paper's Fig. 4(a)),
+//! an ESRI ASCII file ([`Seafloor::read_esri_ascii`]) or any grid file through [`load`]: ESRI
+//! ASCII or GeoTIFF, elevations or depths, projected or geographic (resampled onto the local
+//! tangent plane of [`geo`]), cut to the mission window. [`info`] describes a grid file without
+//! loading it.
 
 mod error;
 mod esri_ascii;
+pub mod geo;
+mod geokeys;
+mod geotiff;
+mod geotiff_write;
+mod info;
+mod load;
+mod resample;
 mod synthetic;
 
 pub use error::SeafloorError;
+pub use geotiff_write::{write_geotiff, GeoTiffOptions, SampleType, TiffCompression, TiffLayout};
+pub use info::{info, GridInfo};
+pub use load::{
+    load, Crs, GridFormat, Lattice, LoadOptions, LoadedFloor, NodeWindow, Region, Values,
+};
 pub use synthetic::{SyntheticParams, MAX_SYNTHETIC_FEATURES, MAX_SYNTHETIC_NODES_PER_AXIS};
 
 use sha2::{Digest, Sha256};
@@ -69,6 +84,36 @@ impl std::fmt::Display for Extent {
             "x from {} to {} m and y from {} to {} m",
             self.x_min, self.x_max, self.y_min, self.y_max
         )
+    }
+}
+
+/// What makes a cell an obstacle ([`Seafloor::obstacle`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Obstacle {
+    /// One of the cell's nodes is NODATA.
+    Nodata,
+    /// One of the cell's nodes is land: `highest` is the highest node's elevation (≥ 0),
+    /// `at_point` the floor's elevation at the point asked about.
+    Land { highest: f64, at_point: f64 },
+}
+
+impl std::fmt::Display for Obstacle {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Obstacle::Nodata => write!(
+                f,
+                "over a NODATA cell (no depth known there: a hole in the grid or outside the \
+                 surveyed area)"
+            ),
+            Obstacle::Land { at_point, .. } if at_point >= 0.0 => {
+                write!(f, "on land (the floor there is at z = {at_point:+.1} m)")
+            }
+            Obstacle::Land { highest, .. } => write!(
+                f,
+                "in a grid cell that touches land (a node at z = {highest:+.1} m); such cells \
+                 are obstacles"
+            ),
+        }
     }
 }
 
@@ -261,6 +306,36 @@ impl Seafloor {
         self.z_range
     }
 
+    /// The node lattice: size, south-west node and spacing.
+    pub fn lattice(&self) -> Lattice {
+        Lattice {
+            nx: self.nx,
+            ny: self.ny,
+            x0: self.x0,
+            y0: self.y0,
+            dx: self.dx,
+            dy: self.dy,
+        }
+    }
+
+    /// Every stored node value (0.0 at NODATA) and the NODATA mask, in storage order
+    /// `j * nx + i`.
+    pub fn nodes(&self) -> (&[f64], &[bool]) {
+        (&self.z, &self.nodata)
+    }
+
+    /// Number of NODATA nodes and of land nodes (data, z ≥ 0).
+    pub fn obstacle_counts(&self) -> (usize, usize) {
+        let nodata = self.nodata.iter().filter(|&&m| m).count();
+        let land = self
+            .z
+            .iter()
+            .zip(&self.nodata)
+            .filter(|(&z, &m)| !m && z >= 0.0)
+            .count();
+        (nodata, land)
+    }
+
     /// The cell holding (x, y) and the local coordinates (t, s) ∈ [0, 1]² in it.
     fn locate(&self, x: f64, y: f64) -> Result<Cell, SeafloorError> {
         finite("x", x)?;
@@ -309,6 +384,25 @@ impl Seafloor {
         Ok([c.k, c.k + 1, c.k + nx, c.k + nx + 1]
             .iter()
             .any(|&k| self.nodata[k] || self.z[k] >= 0.0))
+    }
+
+    /// Why the cell holding (x, y) is an obstacle, if it is: a NODATA node, else the highest
+    /// land node (z ≥ 0); `at_point` is the floor's elevation at (x, y) itself.
+    pub fn obstacle(&self, x: f64, y: f64) -> Result<Option<Obstacle>, SeafloorError> {
+        let c = self.locate(x, y)?;
+        let nx = self.nx;
+        let ks = [c.k, c.k + 1, c.k + nx, c.k + nx + 1];
+        if ks.iter().any(|&k| self.nodata[k]) {
+            return Ok(Some(Obstacle::Nodata));
+        }
+        let highest = ks
+            .iter()
+            .map(|&k| self.z[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        Ok((highest >= 0.0).then(|| Obstacle::Land {
+            highest,
+            at_point: c.value(),
+        }))
     }
 
     /// The paper's 𝓛_r: samples the straight segment a → b at n + 1 evenly spaced points

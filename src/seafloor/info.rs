@@ -1,0 +1,245 @@
+//! `shoal seafloor info FILE`: what a grid file holds, read chunk by chunk without loading it.
+
+use super::geo::LocalFrame;
+use super::load::{frame_for, sign_warning, Crs, GridFile, GridFormat, Lattice, Values};
+use super::SeafloorError;
+use std::fmt;
+use std::path::Path;
+
+/// What [`info`] finds in a grid file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridInfo {
+    pub path: String,
+    pub format: GridFormat,
+    pub crs: Crs,
+    /// The file's nodes in its own units.
+    pub native: Lattice,
+    /// Node spacing in metres (at the suggested origin for a geographic grid).
+    pub cell_m: [f64; 2],
+    /// The node extent in the local tangent plane at the suggested origin [x_min, x_max, y_min,
+    /// y_max], metres, for a geographic grid within the frame's range; the native extent for
+    /// metric grids.
+    pub metric_extent: Option<[f64; 4]>,
+    pub values: Values,
+    pub data_nodes: usize,
+    pub nodata_nodes: usize,
+    /// Data nodes at or above sea level (after the sign convention).
+    pub land_nodes: usize,
+    /// (deepest, shallowest) elevation of the data nodes, metres (after the sign convention).
+    pub z_range: Option<(f64, f64)>,
+    /// The suggested mission origin: the grid's centre, [lat, lon] for a geographic grid,
+    /// [x, y] in the grid's own metres otherwise.
+    pub origin: [f64; 2],
+    /// Likely mistakes (the sign convention) and assumptions (a datum taken as WGS84); not
+    /// part of the Display text.
+    pub warnings: Vec<String>,
+}
+
+/// Reads a grid file's header and scans its values (one chunk at a time for a GeoTIFF).
+pub fn info(path: &Path, values: Values) -> Result<GridInfo, SeafloorError> {
+    let name = path.display().to_string();
+    let (mut file, format) = GridFile::open(path)?;
+    let native = file.lattice();
+    let crs = file.crs();
+    let mut warnings = file.warnings();
+    let (mut data, mut nodata, mut land, mut pos, mut neg) = (0, 0, 0, 0, 0);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let sign = if values == Values::Depth { -1.0 } else { 1.0 };
+    file.scan(|v| match v {
+        None => nodata += 1,
+        Some(raw) => {
+            data += 1;
+            pos += usize::from(raw > 0.0);
+            neg += usize::from(raw < 0.0);
+            let z = sign * raw;
+            land += usize::from(z >= 0.0);
+            lo = lo.min(z);
+            hi = hi.max(z);
+        }
+    })?;
+    if let Some(w) = sign_warning(&name, values, (pos, neg)) {
+        warnings.push(w);
+    }
+    let centre = [
+        0.5 * (native.x0 + native.x_max()),
+        0.5 * (native.y0 + native.y_max()),
+    ];
+    let (origin, cell_m, metric_extent) = match crs {
+        Crs::Geographic { .. } => {
+            let frame = frame_for(&native, None)?;
+            let [me, mn] = frame.metres_per_degree();
+            (
+                frame.origin(),
+                [me * native.dx, mn * native.dy],
+                footprint(&frame, &native),
+            )
+        }
+        _ => (
+            centre,
+            [native.dx, native.dy],
+            Some([native.x0, native.x_max(), native.y0, native.y_max()]),
+        ),
+    };
+    Ok(GridInfo {
+        path: name,
+        format,
+        crs,
+        native,
+        cell_m,
+        metric_extent,
+        values,
+        data_nodes: data,
+        nodata_nodes: nodata,
+        land_nodes: land,
+        z_range: (data > 0).then_some((lo, hi)),
+        origin,
+        warnings,
+    })
+}
+
+/// The bounding box of the grid's boundary nodes in the frame; None if any lies beyond the
+/// frame's range.
+fn footprint(frame: &LocalFrame, n: &Lattice) -> Option<[f64; 4]> {
+    let mut e = [
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    let mut visit = |i: usize, j: usize| {
+        let (lon, lat) = (n.x0 + i as f64 * n.dx, n.y0 + j as f64 * n.dy);
+        if !frame.within_range(lat, lon) {
+            return false;
+        }
+        let [x, y] = frame.to_local(lat, lon);
+        e = [e[0].min(x), e[1].max(x), e[2].min(y), e[3].max(y)];
+        true
+    };
+    for i in 0..n.nx {
+        if !(visit(i, 0) && visit(i, n.ny - 1)) {
+            return None;
+        }
+    }
+    for j in 0..n.ny {
+        if !(visit(0, j) && visit(n.nx - 1, j)) {
+            return None;
+        }
+    }
+    Some(e)
+}
+
+impl fmt::Display for GridInfo {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let n = &self.native;
+        let format = match self.format {
+            GridFormat::EsriAscii => "ESRI ASCII grid",
+            GridFormat::GeoTiff => "GeoTIFF",
+        };
+        writeln!(f, "file        {} ({format})", self.path)?;
+        writeln!(
+            f,
+            "size        {} × {} nodes ({} nodes)",
+            n.nx,
+            n.ny,
+            n.nx * n.ny
+        )?;
+        let geographic = matches!(self.crs, Crs::Geographic { .. });
+        let kind = match self.crs {
+            Crs::None => "no CRS in the file: coordinates are read as metres",
+            Crs::Projected { .. } => {
+                "projected, metres: the planner's frame is the grid's own coordinates"
+            }
+            Crs::Geographic { .. } => {
+                "geographic, degrees: the planner works in a local tangent plane"
+            }
+        };
+        writeln!(f, "CRS         {} ({kind})", self.crs)?;
+        if let Crs::Projected {
+            citation: Some(c), ..
+        } = &self.crs
+        {
+            writeln!(f, "            {c}")?;
+        }
+        if geographic {
+            writeln!(
+                f,
+                "extent      longitude {} to {}°, latitude {} to {}° (node centres); cells of \
+                 {}° × {}°",
+                n.x0,
+                n.x_max(),
+                n.y0,
+                n.y_max(),
+                n.dx,
+                n.dy
+            )?;
+            let [lat, lon] = self.origin;
+            match self.metric_extent {
+                Some([x0, x1, y0, y1]) => writeln!(
+                    f,
+                    "metric      x {x0:.1} to {x1:.1} m, y {y0:.1} to {y1:.1} m in the local \
+                     tangent plane at ({lat}°, {lon}°); cells ≈ {:.2} × {:.2} m",
+                    self.cell_m[0], self.cell_m[1]
+                )?,
+                None => writeln!(
+                    f,
+                    "metric      ≈ {:.0} × {:.0} km at the centre's scale; cells ≈ {:.2} × \
+                     {:.2} m (the grid reaches beyond the local frame's range: the planner \
+                     loads only the mission window)",
+                    self.cell_m[0] * (n.nx - 1) as f64 / 1e3,
+                    self.cell_m[1] * (n.ny - 1) as f64 / 1e3,
+                    self.cell_m[0],
+                    self.cell_m[1]
+                )?,
+            }
+        } else {
+            writeln!(
+                f,
+                "extent      x {} to {} m, y {} to {} m (node centres); cells of {} × {} m",
+                n.x0,
+                n.x_max(),
+                n.y0,
+                n.y_max(),
+                n.dx,
+                n.dy
+            )?;
+        }
+        let convention = match self.values {
+            Values::Elevation => "elevation (negative below sea level)",
+            Values::Depth => "depth (positive down; negated on load)",
+        };
+        writeln!(f, "values      {convention}")?;
+        match self.z_range {
+            Some((lo, hi)) => writeln!(
+                f,
+                "elevation   {lo:.2} to {hi:.2} m (depth {:.2} to {:.2} m)",
+                -hi, -lo
+            )?,
+            None => writeln!(f, "elevation   no data")?,
+        }
+        let pct = |k: usize| 100.0 * k as f64 / (n.nx * n.ny).max(1) as f64;
+        writeln!(
+            f,
+            "nodes       {} with data, {} NODATA ({:.2} %), {} land (z ≥ 0, {:.2} %)",
+            self.data_nodes,
+            self.nodata_nodes,
+            pct(self.nodata_nodes),
+            self.land_nodes,
+            pct(self.land_nodes)
+        )?;
+        let [a, b] = self.origin;
+        if geographic {
+            writeln!(
+                f,
+                "origin      seafloor.origin = [{a:.6}, {b:.6}] (lat, lon of the grid centre, \
+                 the default)"
+            )?;
+        } else {
+            writeln!(
+                f,
+                "origin      the grid centre is x = {a:.1}, y = {b:.1} m: start the USV near it \
+                 ([initial] usv = [{a:.1}, {b:.1}])"
+            )?;
+        }
+        Ok(())
+    }
+}

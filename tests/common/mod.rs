@@ -1,0 +1,106 @@
+//! Fixture grids shared by the grid-file tests, written by the crate's own writers.
+#![allow(dead_code)]
+
+use shoal::seafloor::{
+    write_geotiff, Crs, GeoTiffOptions, Lattice, LoadOptions, SampleType, Seafloor,
+    TiffCompression, TiffLayout, Values,
+};
+use std::path::{Path, PathBuf};
+
+pub const UTM: Crs = Crs::Projected {
+    epsg: Some(32631),
+    citation: None,
+};
+pub const WGS84: Crs = Crs::Geographic { epsg: Some(4326) };
+
+/// An integral floor (exact in every sample type) with a NODATA hole and an island, on a
+/// lattice in UTM-like coordinates: 41 × 31 nodes of 20 × 25 m.
+pub fn survey() -> (Lattice, Vec<f64>, Vec<bool>) {
+    let l = Lattice {
+        nx: 41,
+        ny: 31,
+        x0: 500_010.0,
+        y0: 4_700_012.5,
+        dx: 20.0,
+        dy: 25.0,
+    };
+    let mut z = Vec::new();
+    let mut nd = Vec::new();
+    for j in 0..l.ny {
+        for i in 0..l.nx {
+            let v = -120.0 + (i as f64 * 0.7).round() - (j as f64 * 1.3).round();
+            let island = (i as f64 - 30.0).hypot(j as f64 - 8.0) < 3.0;
+            let hole = (5..8).contains(&i) && (20..23).contains(&j);
+            z.push(if island { 4.0 } else { v });
+            nd.push(hole);
+        }
+    }
+    (l, z, nd)
+}
+
+pub fn floor_of(l: &Lattice, z: &[f64], nd: &[bool]) -> Seafloor {
+    Seafloor::from_nodes(l.nx, l.ny, l.x0, l.y0, l.dx, l.dy, z.to_vec(), nd.to_vec()).unwrap()
+}
+
+pub fn tif(
+    dir: &Path,
+    name: &str,
+    (l, z, nd): (&Lattice, &[f64], &[bool]),
+    crs: &Crs,
+    sample: SampleType,
+    layout: TiffLayout,
+) -> PathBuf {
+    let p = dir.join(name);
+    let opts = GeoTiffOptions {
+        sample,
+        layout,
+        citation: None,
+    };
+    write_geotiff(&p, l, z, nd, crs, &opts).unwrap();
+    p
+}
+
+pub fn strips(compression: TiffCompression) -> TiffLayout {
+    TiffLayout::Strips {
+        rows: 3,
+        compression,
+    }
+}
+
+pub fn opts(values: Values) -> LoadOptions {
+    LoadOptions {
+        values,
+        ..LoadOptions::default()
+    }
+}
+
+/// A geographic grid: 0.001° nodes around (43.05° N, 5.07° E), values linear in latitude and
+/// longitude (so bilinear interpolation is exact in degrees), a NODATA hole and an island.
+pub fn geographic() -> (Lattice, Vec<f64>, Vec<bool>) {
+    let l = Lattice {
+        nx: 141,
+        ny: 101,
+        x0: 5.0,
+        y0: 43.0,
+        dx: 0.001,
+        dy: 0.001,
+    };
+    let mut z = Vec::new();
+    let mut nd = Vec::new();
+    for j in 0..l.ny {
+        for i in 0..l.nx {
+            let (lon, lat) = (l.x0 + i as f64 * l.dx, l.y0 + j as f64 * l.dy);
+            z.push(if (i, j) == (120, 80) {
+                3.0
+            } else {
+                geo_depth(lat, lon)
+            });
+            nd.push((20..23).contains(&i) && (70..72).contains(&j));
+        }
+    }
+    (l, z, nd)
+}
+
+pub fn geo_depth(lat: f64, lon: f64) -> f64 {
+    -150.0 + 400.0 * (lat - 43.0) - 300.0 * (lon - 5.0)
+}
