@@ -216,3 +216,18 @@ fn paper_experiment_five_auvs_three_windows() {
 fn paper_experiment_seven_auvs_two_windows() {
     paper_experiment(7, 2);
 }
+
+/// Regression: with one price for a metre above and below a band, Step 3 traded range for
+/// spread and with 15 AUVs (seed 1) broke the acoustic chain at step 14; the planner refused
+/// its own plan. Links above their band now cost 100 times more (`ABOVE_FACTOR`).
+#[test]
+fn regression_fifteen_auvs_keep_their_chain() {
+    let mut s = Scenario::default();
+    s.team.auvs = 15;
+    let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
+    let p = plan_on(&s, &f, source);
+    let r = check_plan(&p, &f);
+    assert!(r.passed(), "\n{}", r.table());
+    assert!(!p.windows[0].graph.exact, "N = 15 uses the P4 heuristic");
+    assert_eq!(p.metrics.connected_fraction, 1.0);
+}

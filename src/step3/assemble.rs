@@ -4,13 +4,14 @@
 //!   ‖P_a − P_b‖ ≤ hi + σ, σ ≥ 0 (the USV end at z = 0);
 //! - C5_2/C5_3 lower end, nonconvex, linearised about the reference: n̂ᵀ(P_a − P_b) ≥ lo − ν,
 //!   ν ≥ 0, with n̂ the reference's unit direction (n̂ᵀd ≤ ‖d‖, so the model is conservative);
-//! - objective: w3·(σ + ν) for the A2U link (OF1_3), w4·(σ + ν) for A2A edges (OF1_4), and
+//! - objective: w3·(100σ + ν) for the A2U link (OF1_3), w4·(100σ + ν) for A2A edges (OF1_4)
+//!   (`links::ABOVE_FACTOR`: out of range is worse than too close), and
 //!   −w5·OF1_5 (concave) linearised: −w5·(‖d̄‖² + 2d̄ᵀ(d − d̄)) per non-adjacent pair.
 //!
 //! The paper writes the bands on squared lengths next to d_s in metres; these are lengths.
 //! Links at k = 0 join the window's fixed start and are not variables.
 
-use super::links::ends;
+use super::links::{ends, ABOVE_FACTOR};
 use crate::linearise::{link_length, spread};
 use crate::plan::Link;
 use crate::team::assemble::{Assembly, RANGE_MARGIN};
@@ -46,7 +47,7 @@ impl TeamProblem<'_> {
         for k in 1..=l.k {
             for (li, &link) in set.links[k].iter().enumerate() {
                 let w = self.band_weight(link);
-                m.q[l.band_upper_slack(li, k)] = w;
+                m.q[l.band_upper_slack(li, k)] = ABOVE_FACTOR * w;
                 m.q[l.band_lower_slack(li, k)] = w;
             }
             for i in 0..l.n {
