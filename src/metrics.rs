@@ -14,10 +14,10 @@ use crate::seafloor::Seafloor;
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
 
-/// A link up to this much (metres) longer than d_s still counts as in range: the solver meets
-/// the upper end d_s of the band C5_2/C5_3 only to its tolerance (the same 1 mm as
-/// `LinkReport::out_of_band`).
-pub const RANGE_TOL: f64 = 1e-3;
+/// A link up to this much (metres) longer than d_s still counts as in range: the checker's
+/// tolerance (Step 3 keeps every band's upper end 1 mm inside d_s, so planned links never need
+/// more), so that a plan the planner accepts as connected passes `shoal check`.
+pub const RANGE_TOL: f64 = 1e-6;
 
 /// What the metrics need from the scenario (built by the caller).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -274,6 +274,14 @@ fn wrap(a: f64) -> f64 {
     }
 }
 
+/// The first step k of `stage` at which an AUV reaches the USV through no chain of links in
+/// range (d_s + `RANGE_TOL`) and in line of sight, and that AUV: the hard requirement of the
+/// acoustic chain, which the planner checks before it accepts a window.
+pub fn first_cut_off(stage: &Stage, floor: &Seafloor, p: &MetricParams) -> Option<(usize, usize)> {
+    (0..stage.usv.position.len())
+        .find_map(|k| StepGraph::new(stage, k, floor, p).cut_off().map(|n| (k, n)))
+}
+
 /// The acoustic graph at one step: node 0 the USV at z = 0, node n + 1 AUV n (None if its path
 /// has no step k); whether each link is usable, computed once.
 struct StepGraph<'a> {
@@ -315,6 +323,21 @@ impl<'a> StepGraph<'a> {
         };
         self.usable[key] = Some(u);
         u
+    }
+
+    /// The first AUV that reaches the USV over no chain of usable links, if any.
+    fn cut_off(&mut self) -> Option<usize> {
+        let (mut seen, mut stack) = (vec![false; self.nodes.len()], vec![0]);
+        seen[0] = true;
+        while let Some(i) = stack.pop() {
+            for j in 0..self.nodes.len() {
+                if !seen[j] && self.usable(i, j) {
+                    seen[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        seen.iter().position(|&s| !s).map(|node| node - 1)
     }
 
     /// Whether every node reaches the USV: over every usable link (`planned` None), or over the
@@ -530,6 +553,15 @@ mod tests {
         assert_eq!((m.connected_fraction, m.chain_fraction), (0.5, 0.0));
         let m = window_metrics(&s, &chain, &floor(-100.0), &P, [0.0; 3]);
         assert_eq!((m.connected_fraction, m.chain_fraction), (1.0, 1.0));
+    }
+
+    /// The planner refuses a window by this: step 0 is cut (AUV 1 behind the ridge), step 1
+    /// is not (the USV has moved over it); without the ridge nothing is cut.
+    #[test]
+    fn first_cut_off_names_the_step_and_the_auv() {
+        let s = across_the_ridge();
+        assert_eq!(first_cut_off(&s, &floor(-10.0), &P), Some((0, 1)));
+        assert_eq!(first_cut_off(&s, &floor(-100.0), &P), None);
     }
 
     #[test]

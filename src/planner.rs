@@ -4,7 +4,7 @@
 //! one ended (line 7).
 
 use crate::conic::ConicError;
-use crate::metrics::{mission_metrics, window_metrics, MetricParams};
+use crate::metrics::{first_cut_off, mission_metrics, window_metrics, MetricParams};
 use crate::plan::{
     AuvState, Graph, InitialState, LinkReport, Metrics, ModelRecord, ObjectiveTerms, Plan,
     SeafloorRecord, Stage, Window, FORMAT,
@@ -492,12 +492,20 @@ pub fn plan_with_progress(
             los_rounds: out3.los_rounds,
         };
         let times = [step1.solve_time_s, graph.solve_time_s, final_.solve_time_s];
-        crate::step3::connected(t, floor, s).map_err(|(k, why)| PlanError::Disconnected {
-            window: w,
-            k,
-            why,
-        })?;
-        let metrics = window_metrics(&final_, &report.links, floor, &metric_params(s), times);
+        let params = metric_params(s);
+        if let Some((k, n)) = first_cut_off(&final_, floor, &params) {
+            let p = final_.auvs[n].position[k];
+            return Err(PlanError::Disconnected {
+                window: w,
+                k,
+                why: format!(
+                    "AUV {n} at ({:.1}, {:.1}, {:.1}) reaches the USV through no chain of links \
+                     within d_s = {} m with line of sight",
+                    p[0], p[1], p[2], s.acoustic.sonar_range
+                ),
+            });
+        }
+        let metrics = window_metrics(&final_, &report.links, floor, &params, times);
         windows.push(Window {
             index: w,
             start_time: w as f64 * s.horizon.steps as f64 * s.horizon.dt,

@@ -12,7 +12,7 @@
 //!   neighbours can start 250 m apart; a hard band would make P5 infeasible. Every (step, link)
 //!   left outside its band is reported in the plan (`links.out_of_band`). The hard requirement,
 //!   that every AUV reaches the USV through links in range and in line of sight at every step,
-//!   is verified after the loop (`planner`) and by `shoal check`.
+//!   is verified after the loop (`planner`, with `metrics::first_cut_off`) and by `shoal check`.
 //! - Line of sight (C1_13): after each P5 solve every planned link is tested with the seafloor's
 //!   𝓛_r query; a blocked link has its band's upper end lowered by `acoustic.los_shrink` (and
 //!   the lower end with it when the band would close) and P5 is solved again from the last
@@ -158,61 +158,6 @@ pub fn describe(link: Link) -> String {
     }
 }
 
-/// Range tolerance of `connected`, metres (the checker's).
-const RANGE_TOLERANCE: f64 = 1e-6;
-
-/// The hard requirement behind the chain: at every step k = 0..=K every AUV reaches the USV
-/// through links (any pair) no longer than d_s with line of sight (𝓛_r, clearance ≥ 0).
-/// Err((k, why)) names the first step and an AUV cut off.
-pub fn connected(
-    t: &Trajectory,
-    floor: &crate::seafloor::Seafloor,
-    s: &crate::scenario::Scenario,
-) -> Result<(), (usize, String)> {
-    let (ds, r) = (s.acoustic.sonar_range, s.acoustic.resolution);
-    let n = t.auv_p.len();
-    for k in 0..t.usv_p.len() {
-        // node n is the USV
-        let at = |i: usize| {
-            if i == n {
-                [t.usv_p[k][0], t.usv_p[k][1], 0.0]
-            } else {
-                t.auv_p[i][k]
-            }
-        };
-        let linked = |i: usize, j: usize| {
-            let (a, b) = (at(i), at(j));
-            let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-            d <= ds + RANGE_TOLERANCE
-                && floor
-                    .segment_clearance(a, b, r)
-                    .is_ok_and(|c| c.min_clearance >= 0.0)
-        };
-        let mut reached = vec![false; n + 1];
-        reached[n] = true;
-        let mut queue = vec![n];
-        while let Some(i) = queue.pop() {
-            for j in 0..n {
-                if !reached[j] && linked(i, j) {
-                    reached[j] = true;
-                    queue.push(j);
-                }
-            }
-        }
-        if let Some(cut) = reached.iter().position(|&x| !x) {
-            return Err((
-                k,
-                format!(
-                    "AUV {cut} at ({:.1}, {:.1}, {:.1}) reaches the USV through no chain of links \
-                     within d_s = {ds} m with line of sight",
-                    t.auv_p[cut][k][0], t.auv_p[cut][k][1], t.auv_p[cut][k][2]
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -287,28 +232,5 @@ mod tests {
             lower_bands(&mut set, &blocked, 15.0);
         }
         assert_eq!(set.bands[1][1], Band { lo: 90.0, hi: 90.0 });
-    }
-
-    /// The ridge cuts AUV 1 off: its only links are to AUV 0 (blocked) and to the USV (out of
-    /// range, 180 m).
-    #[test]
-    fn connectivity_names_the_step_and_the_auv_cut_off() {
-        let (t, _) = team();
-        let s = crate::scenario::Scenario::default();
-        let (k, why) = connected(&t, &ridge(), &s).unwrap_err();
-        assert_eq!(k, 0);
-        assert!(why.starts_with("AUV 1 at (70.0, 0.0, -60.0)"), "{why}");
-        // without the ridge, AUV 1 reaches the USV through AUV 0 (140 m, in sight)
-        let flat = Seafloor::from_nodes(
-            2,
-            2,
-            -500.0,
-            -500.0,
-            1000.0,
-            1000.0,
-            vec![-100.0; 4],
-            vec![false; 4],
-        );
-        assert!(connected(&t, &flat.unwrap(), &s).is_ok());
     }
 }
