@@ -155,6 +155,29 @@ impl FloorSource {
             ..FloorSource::synthetic()
         }
     }
+
+    /// The plan's record of `floor` loaded from this source: where it came from, its grid and
+    /// its fingerprint.
+    pub fn record(&self, floor: &Seafloor) -> SeafloorRecord {
+        let (z_min, z_max) = floor.z_range();
+        SeafloorRecord {
+            source: self.source.clone(),
+            path: self.path.clone(),
+            format: self.format.clone(),
+            crs: self.crs.clone(),
+            values: self.values,
+            origin: self.origin,
+            nx: floor.nx(),
+            ny: floor.ny(),
+            x0: floor.x0(),
+            y0: floor.y0(),
+            dx: floor.dx(),
+            dy: floor.dy(),
+            z_min,
+            z_max,
+            fingerprint: floor.fingerprint(),
+        }
+    }
 }
 
 /// The window's start must satisfy the constraints that no input can change at k = 0.
@@ -516,30 +539,13 @@ pub fn plan_with_progress(
             metrics,
         });
     }
-    let (z_min, z_max) = floor.z_range();
     Ok(Plan {
         format: FORMAT.into(),
         shoal_version: env!("CARGO_PKG_VERSION").into(),
         scenario_source: input.scenario_source.clone(),
         overrides: input.overrides.clone(),
         scenario: s.clone(),
-        seafloor: SeafloorRecord {
-            source: input.seafloor_source.source.clone(),
-            path: input.seafloor_source.path.clone(),
-            format: input.seafloor_source.format.clone(),
-            crs: input.seafloor_source.crs.clone(),
-            values: input.seafloor_source.values,
-            origin: input.seafloor_source.origin,
-            nx: floor.nx(),
-            ny: floor.ny(),
-            x0: floor.x0(),
-            y0: floor.y0(),
-            dx: floor.dx(),
-            dy: floor.dy(),
-            z_min,
-            z_max,
-            fingerprint: floor.fingerprint(),
-        },
+        seafloor: input.seafloor_source.record(floor),
         model: ModelRecord { damping, auv, usv },
         metrics: mission(&windows, floor, s),
         initial,

@@ -224,38 +224,41 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     c.positive("auv.mass", v.mass, "of kg (m)");
     c.non_positive("auv.added_mass_surge", v.added_mass_surge, "kg (γ_v̇x, X_u̇)");
     c.non_positive("auv.added_mass_heave", v.added_mass_heave, "kg (γ_v̇z, Z_ẇ)");
-    // With mass > 0 and added masses ≤ 0 these hold; kept so the model's divisors are
-    // guarded here even if the sign rules above are ever relaxed.
-    if v.mass.is_finite() && v.added_mass_surge.is_finite() {
-        c.float_rel(
-            "auv.added_mass_surge",
-            v.added_mass_surge,
-            v.mass - v.added_mass_surge > 0.0,
-            "auv.mass − auv.added_mass_surge must be > 0".to_string(),
-            &["auv.mass"],
-        );
-    }
-    if v.mass.is_finite() && v.added_mass_heave.is_finite() {
-        c.float_rel(
-            "auv.added_mass_heave",
-            v.added_mass_heave,
-            v.mass - v.added_mass_heave > 0.0,
-            "auv.mass − auv.added_mass_heave must be > 0".to_string(),
-            &["auv.mass"],
-        );
-    }
     c.non_positive("auv.damping_surge", v.damping_surge, "kg/s (γ_vx, X_u)");
     c.non_positive("auv.damping_heave", v.damping_heave, "kg/s (γ_vz, Z_w)");
     c.positive("auv.inertia_yaw", v.inertia_yaw, "of kg·m² (J_z)");
     c.non_positive("auv.added_inertia_yaw", v.added_inertia_yaw, "kg·m² (N_ṙ)");
-    if v.inertia_yaw.is_finite() && v.added_inertia_yaw.is_finite() {
-        c.float_rel(
+    // With mass > 0 and added masses ≤ 0 these hold; kept so the model's divisors are
+    // guarded here even if the sign rules above are ever relaxed.
+    for (key, added, base_key, base) in [
+        (
+            "auv.added_mass_surge",
+            v.added_mass_surge,
+            "auv.mass",
+            v.mass,
+        ),
+        (
+            "auv.added_mass_heave",
+            v.added_mass_heave,
+            "auv.mass",
+            v.mass,
+        ),
+        (
             "auv.added_inertia_yaw",
             v.added_inertia_yaw,
-            v.inertia_yaw - v.added_inertia_yaw > 0.0,
-            "auv.inertia_yaw − auv.added_inertia_yaw must be > 0".to_string(),
-            &["auv.inertia_yaw"],
-        );
+            "auv.inertia_yaw",
+            v.inertia_yaw,
+        ),
+    ] {
+        if base.is_finite() && added.is_finite() {
+            c.float_rel(
+                key,
+                added,
+                base - added > 0.0,
+                format!("{base_key} − {key} must be > 0"),
+                &[base_key],
+            );
+        }
     }
     c.non_positive("auv.damping_yaw", v.damping_yaw, "kg·m²/s (γ_ωz, N_r)");
 

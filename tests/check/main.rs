@@ -13,9 +13,10 @@ mod malformed;
 
 use shoal::check::{check_plan, load_floor, CheckError, CheckReport};
 use shoal::plan::{
-    AuvPath, AuvState, InitialState, ModelRecord, ObjectiveTerms, Plan, SeafloorRecord, Stage,
-    UsvPath, Window, FORMAT,
+    AuvPath, AuvState, InitialState, ModelRecord, ObjectiveTerms, Plan, Stage, UsvPath, Window,
+    FORMAT,
 };
+use shoal::planner::FloorSource;
 use shoal::scenario::{Discretisation, Scenario, UsvObjective};
 use shoal::seafloor::Seafloor;
 use shoal::vehicle::{AuvModel, Damping, UsvModel};
@@ -262,7 +263,6 @@ fn build_with(
             },
         });
     }
-    let (z_min, z_max) = floor.z_range();
     let damping = Damping {
         surge: e[0],
         heave: e[2],
@@ -289,23 +289,7 @@ fn build_with(
         scenario_source: "test".into(),
         overrides: vec![],
         scenario: s.clone(),
-        seafloor: SeafloorRecord {
-            source: "file".into(),
-            path: None,
-            nx: floor.nx(),
-            ny: floor.ny(),
-            x0: floor.x0(),
-            y0: floor.y0(),
-            dx: floor.dx(),
-            dy: floor.dy(),
-            z_min,
-            z_max,
-            fingerprint: floor.fingerprint(),
-            format: "esri-ascii".into(),
-            crs: "none".into(),
-            values: Default::default(),
-            origin: None,
-        },
+        seafloor: FloorSource::file(None).record(floor),
         model,
         initial,
         windows,
