@@ -36,7 +36,8 @@ enum Command {
         /// Override one key, e.g. --set team.auvs=7 (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
-        /// Seafloor grid (ESRI ASCII .asc or GeoTIFF .tif); same as --set seafloor.file=PATH.
+        /// Seafloor grid (ESRI ASCII .asc, GeoTIFF .tif; NetCDF .nc, BAG, XYZ... with the gdal
+        /// feature); same as --set seafloor.file=PATH.
         #[arg(long)]
         seafloor: Option<PathBuf>,
         /// Output directory.
@@ -98,7 +99,7 @@ enum SeafloorCommand {
     },
     /// Describe a grid file: size, extent, CRS, depth range, NODATA and land, suggested origin.
     Info {
-        /// Grid file (.asc, .tif, .tiff).
+        /// Grid file (.asc, .tif, .tiff; with the gdal feature .nc, .grd, .bag, .xyz, ...).
         file: PathBuf,
         /// Sign convention of the values: elevation (negative below sea level) or depth.
         #[arg(long, default_value = "elevation", value_parser = ["elevation", "depth"])]

@@ -176,7 +176,8 @@ pub fn write_floor(
             floor.write_geotiff(out, &crs, citation.as_deref())?
         }
         Some(GridFormat::EsriAscii) => floor.write_esri_ascii(out)?,
-        None => {
+        // shoal writes .asc and .tif only; GDAL converts those to anything else
+        Some(GridFormat::Gdal) | None => {
             return Err(SeafloorError::Format {
                 path: out.display().to_string(),
             })

@@ -181,7 +181,8 @@ pub struct Weights {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SeafloorSpec {
-    /// Path of a grid file: ESRI ASCII (.asc) or GeoTIFF (.tif, .tiff), metres. When absent the
+    /// Path of a grid file: ESRI ASCII (.asc) or GeoTIFF (.tif, .tiff), or with the `gdal`
+    /// feature any grid GDAL reads (.nc, .grd, .bag, .xyz, ...), metres. When absent the
     /// synthetic floor below is generated.
     pub file: Option<String>,
     /// The sign convention of the file's values: elevation (negative below sea level, GEBCO)

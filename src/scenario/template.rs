@@ -152,10 +152,11 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "seafloor.file" => {
             "Path of a grid file (relative paths from this file's directory): ESRI ASCII \
              (.asc; no CRS: coordinates in metres) or GeoTIFF (.tif, .tiff; float32/64, \
-             int16/32, uint16; its CRS from the GeoKeys). A projected grid (e.g. UTM) is used in \
-             its own coordinates, so give [initial] positions inside it; a geographic grid \
-             (degrees, EPSG:4326) is resampled onto the local tangent plane at `origin`. When \
-             absent the synthetic floor below is generated."
+             int16/32, uint16; its CRS from the GeoKeys); with the gdal cargo feature, any grid \
+             GDAL reads (NetCDF .nc as GEBCO's, GMT .grd, BAG, XYZ). A projected grid (e.g. \
+             UTM) is used in its own coordinates, so give [initial] positions inside it; a \
+             geographic grid (degrees, EPSG:4326) is resampled onto the local tangent plane at \
+             `origin`. When absent the synthetic floor below is generated."
         }
         "seafloor.values" => {
             "Sign convention of the file's values: \"elevation\" (metres, negative below sea \

@@ -296,8 +296,9 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
             c.push(
                 "seafloor.file",
                 format!("{f:?}"),
-                "must be the path of a grid file: an ESRI ASCII grid (.asc) or a GeoTIFF \
-                 (.tif, .tiff) (leave the key out to use the synthetic floor)"
+                "must be the path of a grid file: an ESRI ASCII grid (.asc), a GeoTIFF \
+                 (.tif, .tiff), or with the gdal cargo feature a file GDAL reads (.nc, .grd, \
+                 .bag, .xyz, ...) (leave the key out to use the synthetic floor)"
                     .to_string(),
                 &[],
             );

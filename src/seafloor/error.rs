@@ -76,6 +76,20 @@ pub enum SeafloorError {
     )]
     Format { path: String },
 
+    /// A grid file read through GDAL (the `gdal` cargo feature) cannot be opened or read, or
+    /// holds something shoal cannot use.
+    #[error("{path}: {reason}")]
+    Gdal { path: String, reason: String },
+
+    /// A format that only the GDAL reader opens (NetCDF, BAG, XYZ, ...), in a build without the
+    /// `gdal` cargo feature.
+    #[error(
+        "{path}: a .{extension} grid is read through GDAL, which this build of shoal leaves out; \
+         build shoal with `cargo build --release --features gdal` (needs libgdal-dev), or \
+         convert the grid to a GeoTIFF first (gdal_translate -of GTiff {path} grid.tif)"
+    )]
+    NeedsGdal { path: String, extension: String },
+
     /// The part of a grid that was asked for cannot be loaded: the mission area does not overlap
     /// the grid, is too large, or the grid does not hold the lattice a plan records.
     #[error("{path}: {reason}")]

@@ -11,6 +11,9 @@ use std::path::Path;
 pub struct GridInfo {
     pub path: String,
     pub format: GridFormat,
+    /// The GDAL driver that reads the file ("netCDF: Network Common Data Format"), for a file
+    /// read through GDAL.
+    pub driver: Option<String>,
     pub crs: Crs,
     /// The file's nodes in its own units.
     pub native: Lattice,
@@ -41,6 +44,7 @@ pub fn info(path: &Path, values: Values) -> Result<GridInfo, SeafloorError> {
     let (mut file, format) = GridFile::open(path)?;
     let native = file.lattice();
     let crs = file.crs();
+    let driver = file.driver();
     let mut warnings = file.warnings();
     let (mut data, mut nodata, mut land, mut pos, mut neg) = (0, 0, 0, 0, 0);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -83,6 +87,7 @@ pub fn info(path: &Path, values: Values) -> Result<GridInfo, SeafloorError> {
     Ok(GridInfo {
         path: name,
         format,
+        driver,
         crs,
         native,
         cell_m,
@@ -131,9 +136,11 @@ fn footprint(frame: &LocalFrame, n: &Lattice) -> Option<[f64; 4]> {
 impl fmt::Display for GridInfo {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = &self.native;
-        let format = match self.format {
-            GridFormat::EsriAscii => "ESRI ASCII grid",
-            GridFormat::GeoTiff => "GeoTIFF",
+        let format = match (self.format, &self.driver) {
+            (GridFormat::EsriAscii, _) => "ESRI ASCII grid".to_string(),
+            (GridFormat::GeoTiff, _) => "GeoTIFF".to_string(),
+            (GridFormat::Gdal, Some(d)) => format!("{d}, read with GDAL"),
+            (GridFormat::Gdal, None) => "read with GDAL".to_string(),
         };
         writeln!(f, "file        {} ({format})", self.path)?;
         writeln!(

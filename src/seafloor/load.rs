@@ -2,7 +2,9 @@
 //! convention, the mission window, and geographic grids resampled onto the local tangent plane.
 //!
 //! - **Formats**: `.asc` (ESRI ASCII grid, no CRS: coordinates are metres) and `.tif`/`.tiff`
-//!   (GeoTIFF, with its CRS).
+//!   (GeoTIFF, with its CRS), read in pure Rust; with the `gdal` cargo feature, anything GDAL
+//!   reads (NetCDF `.nc` as GEBCO's, GMT `.grd`, BAG, XYZ, ...; see `gdal_grid.rs`). Without
+//!   the feature, those extensions give [`SeafloorError::NeedsGdal`].
 //! - **Values**: [`Values::Elevation`] (negative below sea level, as GEBCO) or
 //!   [`Values::Depth`] (positive down; negated on load). After loading, land is z ≥ 0.
 //! - **Projected grids and grids without a CRS** keep their own coordinates (metres); the
@@ -92,24 +94,38 @@ impl std::fmt::Display for Crs {
 pub enum GridFormat {
     EsriAscii,
     GeoTiff,
+    /// Read through GDAL (the `gdal` cargo feature).
+    Gdal,
 }
 
+/// Extensions that go to GDAL whether or not the `gdal` feature is built (so that a build
+/// without it says what is missing): NetCDF (GEBCO), GMT grids, BAG, gridded XYZ, HDF5 (S-102).
+const GDAL_EXTENSIONS: [&str; 8] = ["nc", "nc4", "cdf", "grd", "bag", "xyz", "h5", "hdf5"];
+
 impl GridFormat {
-    /// `.asc` → ESRI ASCII, `.tif`/`.tiff` → GeoTIFF (case-insensitive); None otherwise.
+    /// `.asc` → ESRI ASCII, `.tif`/`.tiff` → GeoTIFF, the extensions GDAL reads (`.nc`,
+    /// `.grd`, `.bag`, `.xyz`, `.h5`, ...) → GDAL (case-insensitive); with the `gdal` feature,
+    /// any other name → GDAL too; None otherwise.
     pub fn from_path(path: &Path) -> Option<GridFormat> {
-        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-        match ext.as_str() {
-            "asc" => Some(GridFormat::EsriAscii),
-            "tif" | "tiff" => Some(GridFormat::GeoTiff),
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("asc") => Some(GridFormat::EsriAscii),
+            Some("tif" | "tiff") => Some(GridFormat::GeoTiff),
+            Some(e) if GDAL_EXTENSIONS.contains(&e) => Some(GridFormat::Gdal),
+            _ if cfg!(feature = "gdal") => Some(GridFormat::Gdal),
             _ => None,
         }
     }
 
-    /// "esri-ascii" or "geotiff", as a plan records it.
+    /// "esri-ascii", "geotiff" or "gdal", as a plan records it.
     pub fn name(self) -> &'static str {
         match self {
             GridFormat::EsriAscii => "esri-ascii",
             GridFormat::GeoTiff => "geotiff",
+            GridFormat::Gdal => "gdal",
         }
     }
 }
@@ -190,6 +206,8 @@ pub struct LoadedFloor {
 pub(crate) enum GridFile {
     Esri(Box<Seafloor>),
     Tiff(Box<TiffGrid>),
+    #[cfg(feature = "gdal")]
+    Gdal(Box<super::gdal_grid::GdalGrid>),
 }
 
 impl GridFile {
@@ -203,13 +221,25 @@ impl GridFile {
                 format,
             ),
             GridFormat::GeoTiff => (GridFile::Tiff(Box::new(TiffGrid::open(path)?)), format),
+            GridFormat::Gdal => (open_gdal(path)?, format),
         })
+    }
+
+    /// The GDAL driver reading the file ("netCDF: Network Common Data Format"), if GDAL does.
+    pub fn driver(&self) -> Option<String> {
+        match self {
+            #[cfg(feature = "gdal")]
+            GridFile::Gdal(g) => Some(g.driver.clone()),
+            _ => None,
+        }
     }
 
     pub fn lattice(&self) -> Lattice {
         match self {
             GridFile::Esri(f) => f.lattice(),
             GridFile::Tiff(t) => t.lattice,
+            #[cfg(feature = "gdal")]
+            GridFile::Gdal(g) => g.lattice,
         }
     }
 
@@ -217,6 +247,8 @@ impl GridFile {
         match self {
             GridFile::Esri(_) => Crs::None,
             GridFile::Tiff(t) => t.crs.clone(),
+            #[cfg(feature = "gdal")]
+            GridFile::Gdal(g) => g.crs.clone(),
         }
     }
 
@@ -224,6 +256,8 @@ impl GridFile {
         match self {
             GridFile::Esri(_) => Vec::new(),
             GridFile::Tiff(t) => t.warnings.clone(),
+            #[cfg(feature = "gdal")]
+            GridFile::Gdal(g) => g.warnings.clone(),
         }
     }
 
@@ -232,6 +266,8 @@ impl GridFile {
         match self {
             GridFile::Esri(f) => Ok(esri_ascii::window(f, w)),
             GridFile::Tiff(t) => t.read_window(w),
+            #[cfg(feature = "gdal")]
+            GridFile::Gdal(g) => g.read_window(w),
         }
     }
 
@@ -244,8 +280,28 @@ impl GridFile {
                 Ok(())
             }
             GridFile::Tiff(t) => t.scan(f),
+            #[cfg(feature = "gdal")]
+            GridFile::Gdal(g) => g.scan(f),
         }
     }
+}
+
+#[cfg(feature = "gdal")]
+fn open_gdal(path: &Path) -> Result<GridFile, SeafloorError> {
+    Ok(GridFile::Gdal(Box::new(super::gdal_grid::GdalGrid::open(
+        path,
+    )?)))
+}
+
+/// Without the `gdal` feature: an error that says how to build shoal with it.
+#[cfg(not(feature = "gdal"))]
+fn open_gdal(path: &Path) -> Result<GridFile, SeafloorError> {
+    Err(SeafloorError::NeedsGdal {
+        path: path.display().to_string(),
+        extension: path
+            .extension()
+            .map_or_else(String::new, |e| e.to_string_lossy().to_ascii_lowercase()),
+    })
 }
 
 /// Loads a grid file (see the module docs). Errors name the file.

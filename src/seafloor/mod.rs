@@ -29,12 +29,17 @@
 //!
 //! Grids come from [`Seafloor::from_nodes`], [`Seafloor::synthetic`] (the paper's Fig. 4(a)),
 //! an ESRI ASCII file ([`Seafloor::read_esri_ascii`]) or any grid file through [`load`]: ESRI
-//! ASCII or GeoTIFF, elevations or depths, projected or geographic (resampled onto the local
+//! ASCII or GeoTIFF (and, with the `gdal` cargo feature, NetCDF, BAG, XYZ and the other formats
+//! GDAL reads), elevations or depths, projected or geographic (resampled onto the local
 //! tangent plane of [`geo`]), cut to the mission window. [`info`] describes a grid file without
 //! loading it.
 
 mod error;
 mod esri_ascii;
+#[cfg(feature = "gdal")]
+mod gdal_crs;
+#[cfg(feature = "gdal")]
+mod gdal_grid;
 pub mod geo;
 mod geokeys;
 mod geotiff;
