@@ -131,8 +131,20 @@ fn malformed_or_unsupported_files_give_errors_that_name_the_file_and_the_problem
     );
     let text = case("text.tif", &|p| std::fs::write(p, "not a tiff").unwrap());
     assert!(text.contains("not a readable TIFF"), "{text}");
-    let unknown = case("grid.nc", &|p| std::fs::write(p, "").unwrap());
-    assert!(unknown.contains("unknown grid format"), "{unknown}");
+    let nc = case("grid.nc", &|p| std::fs::write(p, "").unwrap());
+    let unknown = case("grid.dem", &|p| std::fs::write(p, "").unwrap());
+    if cfg!(feature = "gdal") {
+        // GDAL opens anything, and says what it cannot
+        for e in [&nc, &unknown] {
+            assert!(e.contains("GDAL cannot open it"), "{e}");
+        }
+    } else {
+        assert!(
+            nc.contains("grid.nc") && nc.contains("cargo build --release --features gdal"),
+            "{nc}"
+        );
+        assert!(unknown.contains("unknown grid format"), "{unknown}");
+    }
     let missing = load(&d.join("nope.tif"), &LoadOptions::default()).unwrap_err();
     assert!(
         matches!(missing, SeafloorError::Io { .. }) && missing.to_string().contains("nope.tif")
