@@ -96,13 +96,18 @@ enum SeafloorCommand {
         #[arg(short, long, default_value = "seafloor.asc")]
         out: PathBuf,
     },
-    /// Describe a grid file: size, extent, CRS, depth range, NODATA and land, suggested origin.
+    /// Describe a grid file: size, extent, CRS and where it comes from, depth range, NODATA and
+    /// land, suggested origin.
     Info {
         /// Grid file (.asc, .tif, .tiff).
         file: PathBuf,
         /// Sign convention of the values: elevation (negative below sea level) or depth.
         #[arg(long, default_value = "elevation", value_parser = ["elevation", "depth"])]
         values: String,
+        /// The file's CRS, "EPSG:<code>" (as seafloor.crs): for a grid without one, or to check
+        /// a file's own.
+        #[arg(long)]
+        crs: Option<String>,
     },
 }
 
@@ -193,13 +198,13 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Seafloor {
-            command: SeafloorCommand::Info { file, values },
+            command: SeafloorCommand::Info { file, values, crs },
         } => {
             let values = match values.as_str() {
                 "depth" => shoal::seafloor::Values::Depth,
                 _ => shoal::seafloor::Values::Elevation,
             };
-            let info = shoal::seafloor::info(&file, values)?;
+            let info = shoal::seafloor::info_with_crs(&file, values, crs.as_deref())?;
             print!("{info}");
             info.warnings.iter().for_each(|w| eprintln!("warning: {w}"));
             Ok(ExitCode::SUCCESS)

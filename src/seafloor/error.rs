@@ -81,6 +81,19 @@ pub enum SeafloorError {
     #[error("{path}: {reason}")]
     Region { path: String, reason: String },
 
+    /// A declared CRS (`seafloor.crs`, `--crs`) disagrees with the one the file or its sidecar
+    /// gives.
+    #[error(
+        "{path}: the declared CRS {declared} (seafloor.crs or --crs) conflicts with the grid's \
+         own CRS {file_crs} ({file_source}); remove the declaration or correct the file"
+    )]
+    CrsConflict {
+        path: String,
+        declared: String,
+        file_crs: String,
+        file_source: String,
+    },
+
     /// Reading or writing a grid file failed.
     #[error("{path}: {source}")]
     Io {

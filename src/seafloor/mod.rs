@@ -33,6 +33,7 @@
 //! tangent plane of [`geo`]), cut to the mission window. [`info`] describes a grid file without
 //! loading it.
 
+mod crs;
 mod error;
 mod esri_ascii;
 pub mod geo;
@@ -44,9 +45,10 @@ mod load;
 mod resample;
 mod synthetic;
 
+pub use crs::{parse_crs, wkt_of, CrsSource};
 pub use error::SeafloorError;
 pub use geotiff_write::{write_geotiff, GeoTiffOptions, SampleType, TiffCompression, TiffLayout};
-pub use info::{info, GridInfo};
+pub use info::{info, info_with_crs, GridInfo};
 pub use load::{
     load, Crs, GridFormat, Lattice, LoadOptions, LoadedFloor, NodeWindow, Region, Values,
 };
