@@ -94,6 +94,15 @@ pub enum SeafloorError {
         file_source: String,
     },
 
+    /// A crop or resampling of a grid ([`super::export_grid`]) cannot be done as asked;
+    /// `option` names the request (`region`, `region-latlon`, `cell`), as the CLI's options do.
+    #[error("{path}: --{option}: {reason}")]
+    Crop {
+        path: String,
+        option: &'static str,
+        reason: String,
+    },
+
     /// Reading or writing a grid file failed.
     #[error("{path}: {source}")]
     Io {

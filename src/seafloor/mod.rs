@@ -33,6 +33,7 @@
 //! tangent plane of [`geo`]), cut to the mission window. [`info`] describes a grid file without
 //! loading it.
 
+mod crop;
 mod crs;
 mod error;
 mod esri_ascii;
@@ -45,6 +46,9 @@ mod load;
 mod resample;
 mod synthetic;
 
+pub use crop::{
+    crop_floor, export_grid, latlon_box_in_frame, CropRegion, ExportOptions, ExportedGrid,
+};
 pub use crs::{parse_crs, wkt_of, CrsSource};
 pub use error::SeafloorError;
 pub use geotiff_write::{write_geotiff, GeoTiffOptions, SampleType, TiffCompression, TiffLayout};
