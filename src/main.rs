@@ -76,6 +76,16 @@ enum Command {
         #[arg(long)]
         seafloor: Option<PathBuf>,
     },
+    /// Write a plan's positions as CSV, one row per vehicle and step of the final plan, in the
+    /// planner's frame and, when the floor has a CRS, in latitude/longitude (geographic grid) or
+    /// easting/northing (projected grid).
+    Export {
+        /// The plan file (plan.json).
+        plan: PathBuf,
+        /// The CSV file to write.
+        #[arg(long, value_name = "OUT")]
+        csv: PathBuf,
+    },
     /// Seafloor tools.
     Seafloor {
         #[command(subcommand)]
@@ -201,6 +211,17 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             seafloor,
         } => view(&plan, seafloor.as_deref(), &out),
+        Command::Export { plan, csv } => {
+            let p = shoal::output::read_plan(&plan)?;
+            let (rows, georef) = shoal::positions::write_csv(&p, &csv)
+                .with_context(|| format!("exporting the positions of {}", plan.display()))?;
+            println!(
+                "wrote {} ({rows} rows: positions in the planner's frame and {})",
+                csv.display(),
+                georef.describe()
+            );
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Seafloor {
             command:
                 SeafloorCommand::Export {
