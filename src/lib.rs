@@ -10,7 +10,8 @@
 //! - [`step1`]: Step 1, problem P2, solved by [`scp`] (SCvx trust region) over [`conic`] (Clarabel).
 //! - [`step2`]: Step 2, P3 (A2U link) and P4 (A2A path, [`graph`]) per step.
 //! - [`step3`]: Step 3, problem P5 with the line-of-sight loop (Algorithm 1, lines 17–22).
-//! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs.
+//! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs;
+//!   [`positions`]: a plan's positions in latitude/longitude or the grid's projected CRS.
 //! - [`metrics`]: the plan's metrics (energy, swept area, height, connectivity, heading rate).
 //! - [`check`]: independent verification of a plan against the seafloor.
 //! - [`viewer`]: the plan as one self-contained, interactive 3D HTML page (three.js).
@@ -29,6 +30,7 @@ pub mod metrics;
 pub mod output;
 pub mod plan;
 pub mod planner;
+pub mod positions;
 pub mod report;
 pub mod scenario;
 pub mod scp;

@@ -77,6 +77,16 @@ enum Command {
         #[arg(long)]
         seafloor: Option<PathBuf>,
     },
+    /// Write a plan's positions as CSV, one row per vehicle and step of the final plan, in the
+    /// planner's frame and, when the floor has a CRS, in latitude/longitude (geographic grid) or
+    /// easting/northing (projected grid).
+    Export {
+        /// The plan file (plan.json).
+        plan: PathBuf,
+        /// The CSV file to write.
+        #[arg(long, value_name = "OUT")]
+        csv: PathBuf,
+    },
     /// Seafloor tools.
     Seafloor {
         #[command(subcommand)]
@@ -87,8 +97,10 @@ enum Command {
 #[derive(Subcommand)]
 enum SeafloorCommand {
     /// Write the scenario's seafloor as the planner uses it (default: the synthetic one; a grid
-    /// file cut to the mission window, in metres) as an ESRI ASCII grid (.asc) or a GeoTIFF
-    /// (.tif, .tiff).
+    /// file cut to the mission window, in metres), or a grid file in its own CRS (--from), as an
+    /// ESRI ASCII grid (.asc, with a .prj sidecar when the CRS is known) or a GeoTIFF (.tif,
+    /// .tiff); optionally cropped to a region and resampled (bilinear; NODATA and land never
+    /// shrink). Values are written as elevations.
     Export {
         /// Scenario file; the embedded default when absent.
         scenario: Option<PathBuf>,
@@ -96,14 +108,42 @@ enum SeafloorCommand {
         set: Vec<String>,
         #[arg(short, long, default_value = "seafloor.asc")]
         out: PathBuf,
+        /// Export this grid file (in its own CRS) instead of the scenario's floor.
+        #[arg(long, value_name = "FILE", conflicts_with_all = ["scenario", "set"])]
+        from: Option<PathBuf>,
+        /// With --from: sign convention of the file's values.
+        #[arg(long, requires = "from", value_parser = ["elevation", "depth"])]
+        values: Option<String>,
+        /// With --from: the file's CRS, "EPSG:<code>" (as seafloor.crs).
+        #[arg(long, requires = "from")]
+        crs: Option<String>,
+        /// Crop to this rectangle, in the grid's own units (with --from: metres, or degrees of
+        /// longitude and latitude; else the planner's frame, metres).
+        #[arg(long, value_name = "XMIN,YMIN,XMAX,YMAX", value_parser = four_numbers,
+              allow_hyphen_values = true)]
+        region: Option<[f64; 4]>,
+        /// Crop to this latitude/longitude box (degrees; a geographic grid, or a scenario floor
+        /// from one).
+        #[arg(long, value_name = "SOUTH,WEST,NORTH,EAST", value_parser = four_numbers,
+              conflicts_with = "region", allow_hyphen_values = true)]
+        region_latlon: Option<[f64; 4]>,
+        /// Resample onto cells of this size, metres (for a geographic grid, turned into degrees
+        /// at the region's centre latitude).
+        #[arg(long, value_name = "METRES")]
+        cell: Option<f64>,
     },
-    /// Describe a grid file: size, extent, CRS, depth range, NODATA and land, suggested origin.
+    /// Describe a grid file: size, extent, CRS and where it comes from, depth range, NODATA and
+    /// land, suggested origin.
     Info {
         /// Grid file (.asc, .tif, .tiff; with the gdal feature .nc, .grd, .bag, .xyz, ...).
         file: PathBuf,
         /// Sign convention of the values: elevation (negative below sea level) or depth.
         #[arg(long, default_value = "elevation", value_parser = ["elevation", "depth"])]
         values: String,
+        /// The file's CRS, "EPSG:<code>" (as seafloor.crs): for a grid without one, or to check
+        /// a file's own.
+        #[arg(long)]
+        crs: Option<String>,
     },
 }
 
@@ -172,39 +212,140 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             seafloor,
         } => view(&plan, seafloor.as_deref(), &out),
-        Command::Seafloor {
-            command: SeafloorCommand::Export { scenario, set, out },
-        } => {
-            let (s, _) = load_scenario(scenario.as_deref(), &set)?;
-            let (floor, source) =
-                shoal::planner::scenario_floor(&s, base_dir(scenario.as_deref()))?;
-            source
-                .warnings
-                .iter()
-                .for_each(|w| eprintln!("warning: {w}"));
-            shoal::output::write_floor(&floor, &source, &out)?;
-            let (lo, hi) = floor.z_range();
+        Command::Export { plan, csv } => {
+            let p = shoal::output::read_plan(&plan)?;
+            let (rows, georef) = shoal::positions::write_csv(&p, &csv)
+                .with_context(|| format!("exporting the positions of {}", plan.display()))?;
             println!(
-                "wrote {} ({} × {} nodes, {} m cells, z from {lo:.1} to {hi:.1} m)",
-                out.display(),
-                floor.nx(),
-                floor.ny(),
-                floor.dx()
+                "wrote {} ({rows} rows: positions in the planner's frame and {})",
+                csv.display(),
+                georef.describe()
             );
             Ok(ExitCode::SUCCESS)
         }
         Command::Seafloor {
-            command: SeafloorCommand::Info { file, values },
+            command:
+                SeafloorCommand::Export {
+                    scenario,
+                    set,
+                    out,
+                    from,
+                    values,
+                    crs,
+                    region,
+                    region_latlon,
+                    cell,
+                },
         } => {
-            let values = match values.as_str() {
-                "depth" => shoal::seafloor::Values::Depth,
-                _ => shoal::seafloor::Values::Elevation,
+            let notes = match from {
+                Some(file) => {
+                    use shoal::seafloor::{CropRegion, ExportOptions};
+                    let region = match (region, region_latlon) {
+                        (Some(r), _) => CropRegion::Native(r),
+                        (_, Some(r)) => CropRegion::LatLon(r),
+                        _ => CropRegion::All,
+                    };
+                    let opts = ExportOptions {
+                        values: values_of(values.as_deref()),
+                        crs,
+                        region,
+                        cell,
+                    };
+                    let g = shoal::seafloor::export_grid(&file, &opts)?;
+                    g.warnings.iter().for_each(|w| eprintln!("warning: {w}"));
+                    let notes = shoal::output::write_grid(&g.floor, &g.crs, None, &out)?;
+                    let (lo, hi) = g.floor.z_range();
+                    println!(
+                        "wrote {} ({} × {} nodes from ({}, {}), cells of {} × {}, CRS {} ({}), z \
+                         from {lo:.1} to {hi:.1} m)",
+                        out.display(),
+                        g.floor.nx(),
+                        g.floor.ny(),
+                        g.floor.x0(),
+                        g.floor.y0(),
+                        g.floor.dx(),
+                        g.floor.dy(),
+                        g.crs,
+                        g.crs_source
+                    );
+                    notes
+                }
+                None => {
+                    let (s, _) = load_scenario(scenario.as_deref(), &set)?;
+                    let (mut floor, source) =
+                        shoal::planner::scenario_floor(&s, base_dir(scenario.as_deref()))?;
+                    source
+                        .warnings
+                        .iter()
+                        .for_each(|w| eprintln!("warning: {w}"));
+                    let region = match (region, region_latlon, source.origin) {
+                        (Some(r), _, _) => Some(r),
+                        (_, Some(b), Some([lat, lon])) => {
+                            let frame = shoal::seafloor::geo::LocalFrame::new(lat, lon)?;
+                            Some(
+                                shoal::seafloor::latlon_box_in_frame(&frame, b).with_context(
+                                    || "--region-latlon: the box reaches beyond the local frame",
+                                )?,
+                            )
+                        }
+                        (_, Some(_), None) => bail!(
+                            "--region-latlon: the scenario's floor is not from a geographic grid \
+                             (its CRS is {}); give --region in its own coordinates, metres",
+                            source.crs
+                        ),
+                        _ => None,
+                    };
+                    if region.is_some() || cell.is_some() {
+                        floor = shoal::seafloor::crop_floor(
+                            &floor,
+                            region,
+                            cell,
+                            "the scenario's floor (planner's frame, metres)",
+                        )?;
+                    }
+                    let notes = shoal::output::write_floor(&floor, &source, &out)?;
+                    let (lo, hi) = floor.z_range();
+                    println!(
+                        "wrote {} ({} × {} nodes, {} m cells, z from {lo:.1} to {hi:.1} m)",
+                        out.display(),
+                        floor.nx(),
+                        floor.ny(),
+                        floor.dx()
+                    );
+                    notes
+                }
             };
-            let info = shoal::seafloor::info(&file, values)?;
+            notes.iter().for_each(|n| println!("{n}"));
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Seafloor {
+            command: SeafloorCommand::Info { file, values, crs },
+        } => {
+            let info =
+                shoal::seafloor::info_with_crs(&file, values_of(Some(&values)), crs.as_deref())?;
             print!("{info}");
             info.warnings.iter().for_each(|w| eprintln!("warning: {w}"));
             Ok(ExitCode::SUCCESS)
         }
+    }
+}
+
+fn values_of(v: Option<&str>) -> shoal::seafloor::Values {
+    match v {
+        Some("depth") => shoal::seafloor::Values::Depth,
+        _ => shoal::seafloor::Values::Elevation,
+    }
+}
+
+/// "a,b,c,d": four numbers.
+fn four_numbers(text: &str) -> Result<[f64; 4], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let nums: Vec<f64> = parts.iter().filter_map(|p| p.parse().ok()).collect();
+    match <[f64; 4]>::try_from(nums) {
+        Ok(v) if parts.len() == 4 && v.iter().all(|x| x.is_finite()) => Ok(v),
+        _ => Err(format!(
+            "{text:?}: expected four finite numbers separated by commas"
+        )),
     }
 }
 

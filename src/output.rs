@@ -142,40 +142,96 @@ pub fn write_csvs(plan: &Plan, dir: &Path) -> Result<Vec<PathBuf>, OutputError> 
     Ok(written)
 }
 
-/// Writes a floor (`shoal seafloor export`) by the file name's extension: a GeoTIFF keeps the source's projected CRS; a
-/// floor resampled from a geographic grid is written in its local frame (a user-defined CRS
-/// whose citation names the origin).
+/// Writes a floor (`shoal seafloor export`) by the file name's extension: a GeoTIFF keeps the
+/// source's projected CRS; a floor resampled from a geographic grid is written in its local frame
+/// (a user-defined CRS whose citation names the origin). Returns notes for the user (see
+/// [`write_grid`]).
 pub fn write_floor(
     floor: &crate::seafloor::Seafloor,
     source: &crate::planner::FloorSource,
     out: &Path,
-) -> Result<(), crate::seafloor::SeafloorError> {
+) -> Result<Vec<String>, crate::seafloor::SeafloorError> {
+    use crate::seafloor::Crs;
+    let (crs, citation) = match (source.origin, source.crs.strip_prefix("EPSG:")) {
+        (Some([lat, lon]), _) => (
+            Crs::Projected {
+                epsg: None,
+                citation: None,
+            },
+            Some(format!(
+                "shoal local tangent plane (x east, y north, metres) at {lat}, {lon} (WGS84)"
+            )),
+        ),
+        (None, Some(code)) => (
+            Crs::Projected {
+                epsg: code.parse().ok(),
+                citation: None,
+            },
+            None,
+        ),
+        (None, None) => (Crs::None, None),
+    };
+    write_grid(floor, &crs, citation.as_deref(), out)
+}
+
+/// Writes a grid by the file name's extension, atomically: a GeoTIFF with its CRS (and
+/// citation), or an ESRI ASCII grid with a `.prj` sidecar when shoal knows the CRS's WKT
+/// ([`crate::seafloor::wkt_of`]: WGS 84 and its UTM zones). A `.prj` left beside the output by an
+/// earlier grid is removed when the new grid has none, so it cannot mislabel it. Returns what
+/// the user should hear about the sidecar.
+pub fn write_grid(
+    floor: &crate::seafloor::Seafloor,
+    crs: &crate::seafloor::Crs,
+    citation: Option<&str>,
+    out: &Path,
+) -> Result<Vec<String>, crate::seafloor::SeafloorError> {
     use crate::seafloor::{Crs, GridFormat, SeafloorError};
+    let io = |path: &Path, source: std::io::Error| SeafloorError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let mut notes = Vec::new();
     match GridFormat::from_path(out) {
-        Some(GridFormat::GeoTiff) => {
-            let (crs, citation) = match (source.origin, source.crs.strip_prefix("EPSG:")) {
-                (Some([lat, lon]), _) => (
-                    Crs::Projected {
-                        epsg: None,
-                        citation: None,
-                    },
-                    Some(format!(
-                        "shoal local tangent plane (x east, y north, metres) at {lat}, {lon} \
-                         (WGS84)"
-                    )),
-                ),
-                (None, Some(code)) => (
-                    Crs::Projected {
-                        epsg: code.parse().ok(),
-                        citation: None,
-                    },
-                    None,
-                ),
-                (None, None) => (Crs::None, None),
-            };
-            floor.write_geotiff(out, &crs, citation.as_deref())?
+        Some(GridFormat::GeoTiff) => floor.write_geotiff(out, crs, citation)?,
+        Some(GridFormat::EsriAscii) => {
+            floor.write_esri_ascii(out)?;
+            let prj = out.with_extension("prj");
+            match crate::seafloor::wkt_of(crs) {
+                Some(wkt) => {
+                    write_atomic(&prj, wkt.as_bytes()).map_err(|e| match e {
+                        OutputError::Write { path, source } => io(&path, source),
+                        other => io(&prj, std::io::Error::other(other.to_string())),
+                    })?;
+                    notes.push(format!("wrote {} ({crs})", prj.display()));
+                }
+                None => {
+                    if prj.is_file() {
+                        std::fs::remove_file(&prj).map_err(|e| io(&prj, e))?;
+                        notes.push(format!(
+                            "removed {}, left by an earlier grid: it does not describe this one",
+                            prj.display()
+                        ));
+                    }
+                    let keep = match crs {
+                        Crs::None => None,
+                        Crs::Projected { epsg: Some(c), .. }
+                        | Crs::Geographic { epsg: Some(c) } => Some(format!(
+                            "declare seafloor.crs = \"EPSG:{c}\" when you use it, or export \
+                                 a GeoTIFF (.tif)"
+                        )),
+                        _ => Some("export a GeoTIFF (.tif) to keep it".to_string()),
+                    };
+                    if let Some(keep) = keep {
+                        notes.push(format!(
+                            "{} has no CRS: an ESRI ASCII grid holds none, and shoal writes a \
+                             .prj sidecar only for EPSG:4326 and the WGS 84 UTM zones; the \
+                             grid's CRS is {crs}: {keep}",
+                            out.display()
+                        ));
+                    }
+                }
+            }
         }
-        Some(GridFormat::EsriAscii) => floor.write_esri_ascii(out)?,
         // shoal writes .asc and .tif only; GDAL converts those to anything else
         Some(GridFormat::Gdal) | None => {
             return Err(SeafloorError::Format {
@@ -183,5 +239,5 @@ pub fn write_floor(
             })
         }
     }
-    Ok(())
+    Ok(notes)
 }

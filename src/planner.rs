@@ -366,6 +366,7 @@ pub fn scenario_floor(
             let opts = LoadOptions {
                 values: s.seafloor.values,
                 origin: s.seafloor.origin,
+                crs: s.seafloor.crs.clone(),
                 region: Region::Area {
                     x_min,
                     x_max,

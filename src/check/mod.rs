@@ -403,6 +403,7 @@ pub fn load_floor(plan: &Plan, override_path: Option<&Path>) -> Result<Seafloor,
         let opts = |region| LoadOptions {
             values: rec.values,
             origin: rec.origin,
+            crs: plan.scenario.seafloor.crs.clone(),
             region,
         };
         let window = Region::Nodes {

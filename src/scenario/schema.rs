@@ -1,5 +1,6 @@
 //! The shape of a scenario file, derived from the types themselves: the default scenario with
-//! every optional part filled in (an example `[initial]`, `seafloor.file` and `seafloor.origin`)
+//! every optional part filled in (an example `[initial]`, `seafloor.file`, `seafloor.origin` and
+//! `seafloor.crs`)
 //! serialised
 //! to a TOML document. Used to list the keys allowed at each level, to name the type a key
 //! expects, and to generate the template, so that no key or default value is written twice.
@@ -12,6 +13,8 @@ use toml_edit::{DocumentMut, Item, TableLike, Value};
 pub(crate) const EXAMPLE_FLOOR_FILE: &str = "bathymetry.tif";
 /// Example mission origin (latitude, longitude) shown (commented out) for `seafloor.origin`.
 pub(crate) const EXAMPLE_ORIGIN: [f64; 2] = [43.2, 5.3];
+/// Example CRS shown (commented out) for `seafloor.crs`.
+pub(crate) const EXAMPLE_CRS: &str = "EPSG:4326";
 
 /// An `[initial]` block valid for `s`: the AUVs evenly spread on a circle of radius d_s/2 around
 /// the origin (where the USV starts), halfway between the surface and the shallowest synthetic
@@ -46,6 +49,7 @@ pub(crate) fn full_default() -> Scenario {
     s.initial = Some(example_initial(&s));
     s.seafloor.file = Some(EXAMPLE_FLOOR_FILE.to_string());
     s.seafloor.origin = Some(EXAMPLE_ORIGIN);
+    s.seafloor.crs = Some(EXAMPLE_CRS.to_string());
     s
 }
 

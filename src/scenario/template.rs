@@ -151,12 +151,13 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "seafloor.file" => {
             "Path of a grid file (relative paths from this file's directory): ESRI ASCII \
-             (.asc; no CRS: coordinates in metres) or GeoTIFF (.tif, .tiff; float32/64, \
-             int16/32, uint16; its CRS from the GeoKeys); with the gdal cargo feature, any grid \
-             GDAL reads (NetCDF .nc as GEBCO's, GMT .grd, BAG, XYZ). A projected grid (e.g. \
-             UTM) is used in its own coordinates, so give [initial] positions inside it; a \
-             geographic grid (degrees, EPSG:4326) is resampled onto the local tangent plane at \
-             `origin`. When absent the synthetic floor below is generated."
+             (.asc; its CRS from a .prj sidecar or `crs`, otherwise metres) or GeoTIFF (.tif, \
+             .tiff; float32/64, int16/32, uint16; its CRS from the GeoKeys); with the gdal cargo \
+             feature, any grid GDAL reads (NetCDF .nc as GEBCO's, GMT .grd, BAG, XYZ). A \
+             projected grid (e.g. UTM) is used in its own coordinates, so give [initial] \
+             positions inside it; a geographic grid (degrees, EPSG:4326) is resampled onto the \
+             local tangent plane at `origin`. When absent the synthetic floor below is \
+             generated."
         }
         "seafloor.values" => {
             "Sign convention of the file's values: \"elevation\" (metres, negative below sea \
@@ -169,6 +170,14 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              plane; length error 4 mm at 10 km and 0.5 m at 50 km from it). Default: the grid's \
              centre (`shoal seafloor info FILE` prints it). Only for geographic grids. \
              |latitude| ≤ 85."
+        }
+        "seafloor.crs" => {
+            "The grid file's CRS, \"EPSG:<code>\", for a file that has none: an ESRI ASCII \
+             grid without a .prj sidecar (otherwise read in metres). EPSG:4000–4999 (e.g. \
+             EPSG:4326, WGS 84 latitude and longitude) are geographic, in degrees; others \
+             projected, in metres (e.g. EPSG:32756, UTM zone 56S). For a GeoTIFF or a grid \
+             with a sidecar it must agree with the file's own CRS (a conflict is an error). \
+             `shoal seafloor info FILE` shows the CRS and where it comes from."
         }
         "seafloor.synthetic" => {
             "Synthetic floor (Fig. 4(a)): a sloping plane with Gaussian seamounts and valleys \
@@ -346,8 +355,8 @@ fn join(path: &str, k: &str) -> String {
 
 /// The default scenario as a commented TOML file: every key with its default value and a
 /// comment giving its meaning, unit and symbol in the paper, grouped by section. Optional keys
-/// (`seafloor.file`, `seafloor.origin`, the `[initial]` section) are shown commented out, with
-/// an example.
+/// (`seafloor.file`, `seafloor.origin`, `seafloor.crs`, the `[initial]` section) are shown
+/// commented out, with an example.
 pub fn default_toml() -> String {
     let full = Schema::new();
     let defaults = schema::to_document(&Scenario::default());

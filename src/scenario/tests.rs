@@ -101,6 +101,7 @@ fn template_uncommented() -> String {
         let toml_line = [
             "# file = ",
             "# origin = ",
+            "# crs = ",
             "# [initial]",
             "# usv = ",
             "# auvs = ",
@@ -109,7 +110,9 @@ fn template_uncommented() -> String {
         ]
         .iter()
         .any(|p| line.starts_with(p));
-        let seafloor_key = line.starts_with("# file = ") || line.starts_with("# origin = ");
+        let seafloor_key = ["# file = ", "# origin = ", "# crs = "]
+            .iter()
+            .any(|p| line.starts_with(p));
         let l = if toml_line && (in_initial || seafloor_key) {
             line.strip_prefix("# ").unwrap_or(line)
         } else {
@@ -185,6 +188,7 @@ fn template_values_come_from_default() {
     )));
     assert!(text.contains("# file = \"bathymetry.tif\""));
     assert!(text.contains("# origin = [43.2, 5.3]"));
+    assert!(text.contains("# crs = \"EPSG:4326\""));
     assert!(text.contains("values = \"elevation\""));
     assert!(text.contains("# [initial]"));
 }
@@ -607,6 +611,17 @@ fn out_of_range_rules() {
             "[seafloor.synthetic]\ndepth_range = [-140, 0]",
             "seafloor.synthetic.depth_range",
             2,
+        ),
+        (
+            "[seafloor]\nfile = \"a.asc\"\ncrs = \"WGS84\"",
+            "seafloor.crs",
+            3,
+        ),
+        ("[seafloor]\ncrs = \"EPSG:4326\"", "seafloor.crs", 2),
+        (
+            "[seafloor]\nfile = \"a.asc\"\norigin = [43, 5]\ncrs = \"EPSG:32631\"",
+            "seafloor.origin",
+            4,
         ),
         ("[scp]\nmax_iterations = 0", "scp.max_iterations", 2),
         ("[scp]\ntolerance = 0", "scp.tolerance", 2),

@@ -335,6 +335,34 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
             );
         }
     }
+    if let Some(text) = &s.seafloor.crs {
+        match crate::seafloor::parse_crs(text) {
+            Err(reason) => c.push(
+                "seafloor.crs",
+                format!("{text:?}"),
+                format!("must be a CRS: {reason}"),
+                &[],
+            ),
+            Ok(_) if s.seafloor.file.is_none() => c.push(
+                "seafloor.crs",
+                format!("{text:?}"),
+                "applies to a grid file (seafloor.file); the synthetic floor is already in \
+                 metres"
+                    .to_string(),
+                &["seafloor.file"],
+            ),
+            Ok(crate::seafloor::Crs::Projected { .. }) if s.seafloor.origin.is_some() => c.push(
+                "seafloor.origin",
+                arr(&s.seafloor.origin.unwrap_or_default()),
+                format!(
+                    "applies to a geographic grid; seafloor.crs = {text:?} is projected, and \
+                     its own coordinates (metres) are the planner's frame"
+                ),
+                &["seafloor.crs"],
+            ),
+            Ok(_) => {}
+        }
+    }
     let g = &s.seafloor.synthetic;
     if !(g.size.iter().all(|x| x.is_finite() && *x > 0.0)) {
         c.push(

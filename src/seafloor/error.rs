@@ -95,6 +95,28 @@ pub enum SeafloorError {
     #[error("{path}: {reason}")]
     Region { path: String, reason: String },
 
+    /// A declared CRS (`seafloor.crs`, `--crs`) disagrees with the one the file or its sidecar
+    /// gives.
+    #[error(
+        "{path}: the declared CRS {declared} (seafloor.crs or --crs) conflicts with the grid's \
+         own CRS {file_crs} ({file_source}); remove the declaration or correct the file"
+    )]
+    CrsConflict {
+        path: String,
+        declared: String,
+        file_crs: String,
+        file_source: String,
+    },
+
+    /// A crop or resampling of a grid ([`super::export_grid`]) cannot be done as asked;
+    /// `option` names the request (`region`, `region-latlon`, `cell`), as the CLI's options do.
+    #[error("{path}: --{option}: {reason}")]
+    Crop {
+        path: String,
+        option: &'static str,
+        reason: String,
+    },
+
     /// Reading or writing a grid file failed.
     #[error("{path}: {source}")]
     Io {

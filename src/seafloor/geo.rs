@@ -245,6 +245,36 @@ mod tests {
         ]
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+
+        /// lat/lon → frame → lat/lon gives the point back within 1e-9°, for every origin the
+        /// frame accepts and every point it maps (within MAX_FRAME_DISTANCE of the origin).
+        #[test]
+        fn geographic_to_local_and_back_is_exact(
+            lat0 in -MAX_ORIGIN_LATITUDE..=MAX_ORIGIN_LATITUDE,
+            lon0 in -180.0f64..180.0,
+            bearing in 0.0f64..std::f64::consts::TAU,
+            fraction in 0.0f64..=1.0,
+        ) {
+            let f = LocalFrame::new(lat0, lon0).unwrap();
+            // a point up to 0.99·MAX_FRAME_DISTANCE away (the latitude/longitude offsets are
+            // taken from the frame's scale at the origin, then kept only inside the range)
+            let [me, mn] = f.metres_per_degree();
+            let d = 0.99 * MAX_FRAME_DISTANCE * fraction;
+            let (lat, lon) = (lat0 + d * bearing.cos() / mn, lon0 + d * bearing.sin() / me);
+            proptest::prop_assume!(lat.abs() < 90.0 && f.within_range(lat, lon));
+            let [x, y] = f.to_local(lat, lon);
+            let back = f.to_geographic(x, y);
+            proptest::prop_assert!(back.is_some(), "({lat}, {lon}) → ({x}, {y}): no inverse");
+            let [lat2, lon2] = back.unwrap();
+            proptest::prop_assert!(
+                (lat2 - lat).abs() < 1e-9 && (lon2 - lon).abs() < 1e-9,
+                "({lat}, {lon}) → ({x}, {y}) → ({lat2}, {lon2})"
+            );
+        }
+    }
+
     #[test]
     fn radii_of_curvature_are_wgs84s() {
         // Equator: M = a(1 − e²), N = a; pole: M = N = a / sqrt(1 − e²).

@@ -1,5 +1,6 @@
 //! `shoal seafloor info FILE`: what a grid file holds, read chunk by chunk without loading it.
 
+use super::crs::{resolve, CrsSource};
 use super::geo::LocalFrame;
 use super::load::{frame_for, sign_warning, Crs, GridFile, GridFormat, Lattice, Values};
 use super::SeafloorError;
@@ -15,6 +16,8 @@ pub struct GridInfo {
     /// read through GDAL.
     pub driver: Option<String>,
     pub crs: Crs,
+    /// Where `crs` came from.
+    pub crs_source: CrsSource,
     /// The file's nodes in its own units.
     pub native: Lattice,
     /// Node spacing in metres (at the suggested origin for a geographic grid).
@@ -40,12 +43,21 @@ pub struct GridInfo {
 
 /// Reads a grid file's header and scans its values (one chunk at a time for a GeoTIFF).
 pub fn info(path: &Path, values: Values) -> Result<GridInfo, SeafloorError> {
+    info_with_crs(path, values, None)
+}
+
+/// [`info`] with a declared CRS ("EPSG:<code>", as `seafloor.crs`; see [`super::crs`]).
+pub fn info_with_crs(
+    path: &Path,
+    values: Values,
+    declared: Option<&str>,
+) -> Result<GridInfo, SeafloorError> {
     let name = path.display().to_string();
     let (mut file, format) = GridFile::open(path)?;
     let native = file.lattice();
-    let crs = file.crs();
     let driver = file.driver();
     let mut warnings = file.warnings();
+    let (crs, crs_source) = resolve(path, format, file.crs(), &native, declared, &mut warnings)?;
     let (mut data, mut nodata, mut land, mut pos, mut neg) = (0, 0, 0, 0, 0);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     let sign = if values == Values::Depth { -1.0 } else { 1.0 };
@@ -89,6 +101,7 @@ pub fn info(path: &Path, values: Values) -> Result<GridInfo, SeafloorError> {
         format,
         driver,
         crs,
+        crs_source,
         native,
         cell_m,
         metric_extent,
@@ -152,7 +165,7 @@ impl fmt::Display for GridInfo {
         )?;
         let geographic = matches!(self.crs, Crs::Geographic { .. });
         let kind = match self.crs {
-            Crs::None => "no CRS in the file: coordinates are read as metres",
+            Crs::None => "no CRS: coordinates are read as metres",
             Crs::Projected { .. } => {
                 "projected, metres: the planner's frame is the grid's own coordinates"
             }
@@ -161,6 +174,7 @@ impl fmt::Display for GridInfo {
             }
         };
         writeln!(f, "CRS         {} ({kind})", self.crs)?;
+        writeln!(f, "CRS source  {}", self.crs_source)?;
         if let Crs::Projected {
             citation: Some(c), ..
         } = &self.crs

@@ -1,10 +1,11 @@
 //! Loading a grid file into the planner's metric frame: format by extension, the sign
 //! convention, the mission window, and geographic grids resampled onto the local tangent plane.
 //!
-//! - **Formats**: `.asc` (ESRI ASCII grid, no CRS: coordinates are metres) and `.tif`/`.tiff`
-//!   (GeoTIFF, with its CRS), read in pure Rust; with the `gdal` cargo feature, anything GDAL
-//!   reads (NetCDF `.nc` as GEBCO's, GMT `.grd`, BAG, XYZ, ...; see `gdal_grid.rs`). Without
-//!   the feature, those extensions give [`SeafloorError::NeedsGdal`].
+//! - **Formats**: `.asc` (ESRI ASCII grid: no CRS of its own; a `.prj` sidecar or a declared
+//!   `seafloor.crs` gives it, otherwise coordinates are metres) and `.tif`/`.tiff` (GeoTIFF,
+//!   with its CRS; see [`super::crs`]), read in pure Rust; with the `gdal` cargo feature,
+//!   anything GDAL reads (NetCDF `.nc` as GEBCO's, GMT `.grd`, BAG, XYZ, ...; see
+//!   `gdal_grid.rs`). Without the feature, those extensions give [`SeafloorError::NeedsGdal`].
 //! - **Values**: [`Values::Elevation`] (negative below sea level, as GEBCO) or
 //!   [`Values::Depth`] (positive down; negated on load). After loading, land is z ≥ 0.
 //! - **Projected grids and grids without a CRS** keep their own coordinates (metres); the
@@ -19,6 +20,7 @@
 //!   the chunks holding the mission window (plus one node) are decoded. An ESRI ASCII file is
 //!   text and is parsed whole, then cut.
 
+use super::crs::{resolve, CrsSource};
 use super::esri_ascii;
 use super::geo::{LocalFrame, MAX_FRAME_DISTANCE};
 use super::geotiff::TiffGrid;
@@ -173,6 +175,9 @@ pub struct LoadOptions {
     /// centre). Refused for other grids.
     pub origin: Option<[f64; 2]>,
     pub region: Region,
+    /// The grid's CRS as declared by the user (`seafloor.crs`, e.g. "EPSG:4326"): the CRS of a
+    /// file without one (ESRI ASCII), checked against a file's own (see [`super::crs`]).
+    pub crs: Option<String>,
 }
 
 impl Default for LoadOptions {
@@ -181,6 +186,7 @@ impl Default for LoadOptions {
             values: Values::Elevation,
             origin: None,
             region: Region::All,
+            crs: None,
         }
     }
 }
@@ -190,8 +196,10 @@ impl Default for LoadOptions {
 pub struct LoadedFloor {
     pub floor: Seafloor,
     pub format: GridFormat,
-    /// The file's CRS (for a geographic grid, the floor is in the local frame at `origin`).
+    /// The grid's CRS (for a geographic grid, the floor is in the local frame at `origin`).
     pub crs: Crs,
+    /// Where `crs` came from: the file, a `.prj` sidecar, the declaration, or a guess.
+    pub crs_source: CrsSource,
     pub values: Values,
     /// [lat, lon] of the frame's origin when the grid is geographic.
     pub origin: Option<[f64; 2]>,
@@ -309,22 +317,15 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedFloor, SeafloorErro
     let name = path.display().to_string();
     let (mut file, format) = GridFile::open(path)?;
     let native = file.lattice();
-    let crs = file.crs();
     let mut warnings = file.warnings();
-    if let (Crs::None, GridFormat::EsriAscii) = (&crs, format) {
-        if looks_like_degrees(&native) {
-            warnings.push(format!(
-                "{name}: the coordinates look like degrees (x from {} to {}, y from {} to {}, \
-                 cells of {}), but an ESRI ASCII grid has no CRS and is read in metres; convert \
-                 it to a GeoTIFF with its CRS (e.g. gdal_translate -a_srs EPSG:4326)",
-                native.x0,
-                native.x_max(),
-                native.y0,
-                native.y_max(),
-                native.dx
-            ));
-        }
-    }
+    let (crs, crs_source) = resolve(
+        path,
+        format,
+        file.crs(),
+        &native,
+        opts.crs.as_deref(),
+        &mut warnings,
+    )?;
     let region_error = |reason: String| SeafloorError::Region {
         path: name.clone(),
         reason,
@@ -367,6 +368,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedFloor, SeafloorErro
         floor,
         format,
         crs,
+        crs_source,
         values: opts.values,
         origin,
         native,
@@ -414,15 +416,6 @@ pub(crate) fn sign_warning(
         )),
         _ => None,
     }
-}
-
-fn looks_like_degrees(l: &Lattice) -> bool {
-    l.dx < 0.1
-        && l.dy < 0.1
-        && l.x0 >= -360.0
-        && l.x_max() <= 360.0
-        && l.y0 >= -90.0
-        && l.y_max() <= 90.0
 }
 
 /// The block of a metric lattice's nodes that a region selects (the grid's own frame).

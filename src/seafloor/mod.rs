@@ -34,6 +34,8 @@
 //! tangent plane of [`geo`]), cut to the mission window. [`info`] describes a grid file without
 //! loading it.
 
+mod crop;
+mod crs;
 mod error;
 mod esri_ascii;
 #[cfg(feature = "gdal")]
@@ -49,9 +51,13 @@ mod load;
 mod resample;
 mod synthetic;
 
+pub use crop::{
+    crop_floor, export_grid, latlon_box_in_frame, CropRegion, ExportOptions, ExportedGrid,
+};
+pub use crs::{parse_crs, wkt_of, CrsSource};
 pub use error::SeafloorError;
 pub use geotiff_write::{write_geotiff, GeoTiffOptions, SampleType, TiffCompression, TiffLayout};
-pub use info::{info, GridInfo};
+pub use info::{info, info_with_crs, GridInfo};
 pub use load::{
     load, Crs, GridFormat, Lattice, LoadOptions, LoadedFloor, NodeWindow, Region, Values,
 };
