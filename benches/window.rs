@@ -23,14 +23,15 @@ fn window(c: &mut Criterion) {
             dt: s.horizon.dt,
             max_speed: s.usv.max_speed,
         };
-        let init = initial_state(&s, &floor).expect("initial state");
+        let keep_out = floor.keep_out();
+        let init = initial_state(&s, &floor, &keep_out).expect("initial state");
         let start = Start {
             usv: init.usv,
             auvs: init.auvs,
         };
         group.bench_function(format!("step1/N={n},K=20"), |b| {
             b.iter(|| {
-                let mut p2 = TeamProblem::new(&s, &floor, auv, usv, start.clone());
+                let mut p2 = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start.clone());
                 shoal::step1::solve(&mut p2, None).expect("P2")
             })
         });

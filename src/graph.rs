@@ -72,10 +72,22 @@ impl HamiltonianPath {
 /// P4: the longest Hamiltonian path (maximum Σ ‖P_i − P_j‖² over its edges). Exact for
 /// N ≤ [`EXACT_MAX`], [`heuristic_path`] beyond. N = 0 → empty order, N = 1 → `[0]`.
 pub fn longest_path(points: &[[f64; 3]]) -> HamiltonianPath {
+    longest_path_avoiding(points, |_, _| false)
+}
+
+/// P4 among the paths with the fewest `blocked` edges (`blocked(i, j)`, i < j: an edge that
+/// cannot carry a link, e.g. across an obstacle), the longest of those: each blocked edge
+/// weighs N·(largest squared length + 1) less, more than any path's total length. The
+/// recorded weight is the true Σ ‖P_i − P_j‖².
+pub fn longest_path_avoiding(
+    points: &[[f64; 3]],
+    blocked: impl Fn(usize, usize) -> bool,
+) -> HamiltonianPath {
+    let w = Weights::avoiding(points, blocked);
     if points.len() <= EXACT_MAX {
-        held_karp(points)
+        held_karp(&w)
     } else {
-        heuristic_path(points)
+        heuristic(&w)
     }
 }
 
@@ -112,29 +124,49 @@ pub fn is_hamiltonian_path(n: usize, edges: &[[usize; 2]]) -> bool {
     true
 }
 
-/// Dense matrix of squared 3D distances.
+/// Dense matrix of edge weights: squared 3D distances, less a penalty on blocked edges.
 struct Weights {
     n: usize,
     w: Vec<f64>,
+    /// The squared distances themselves.
+    d: Vec<f64>,
     max: f64,
 }
 
 impl Weights {
+    #[cfg(test)]
     fn new(p: &[[f64; 3]]) -> Self {
+        Self::avoiding(p, |_, _| false)
+    }
+    fn avoiding(p: &[[f64; 3]], blocked: impl Fn(usize, usize) -> bool) -> Self {
         let n = p.len();
-        let mut w = vec![0.0; n * n];
+        let mut d = vec![0.0; n * n];
         let mut max = 0.0f64;
         for i in 0..n {
             for j in 0..n {
-                let d = (0..3).map(|c| (p[i][c] - p[j][c]).powi(2)).sum::<f64>();
-                w[i * n + j] = d;
-                max = max.max(d);
+                let v = (0..3).map(|c| (p[i][c] - p[j][c]).powi(2)).sum::<f64>();
+                d[i * n + j] = v;
+                max = max.max(v);
             }
         }
-        Weights { n, w, max }
+        let penalty = n as f64 * (max + 1.0);
+        let mut w = d.clone();
+        for i in 0..n {
+            for j in i + 1..n {
+                if blocked(i, j) {
+                    w[i * n + j] -= penalty;
+                    w[j * n + i] -= penalty;
+                }
+            }
+        }
+        Weights { n, w, d, max }
     }
     fn at(&self, i: usize, j: usize) -> f64 {
         self.w[i * self.n + j]
+    }
+    /// Σ of the (penalised) weights of the path's edges.
+    fn total(&self, order: &[usize]) -> f64 {
+        order.windows(2).map(|e| self.at(e[0], e[1])).sum()
     }
     /// Weight of edge x–y, or 0 if an endpoint is absent (beyond an end of the path).
     fn edge(&self, x: Option<usize>, y: Option<usize>) -> f64 {
@@ -147,7 +179,7 @@ fn finish(mut order: Vec<usize>, w: &Weights, exact: bool) -> HamiltonianPath {
     if order.first() > order.last() {
         order.reverse();
     }
-    let weight = order.windows(2).map(|e| w.at(e[0], e[1])).sum();
+    let weight = order.windows(2).map(|e| w.d[e[0] * w.n + e[1]]).sum();
     HamiltonianPath {
         order,
         weight,
@@ -158,11 +190,10 @@ fn finish(mut order: Vec<usize>, w: &Weights, exact: bool) -> HamiltonianPath {
 /// Held–Karp: `dp[S][j]` = heaviest path visiting exactly the set S and ending at j (starting
 /// anywhere in S), `dp[{j}][j] = 0`; the answer is max_j dp[all][j], rebuilt from `parent`.
 /// Only meant for N ≤ [`EXACT_MAX`] (memory grows as 2^N N).
-fn held_karp(points: &[[f64; 3]]) -> HamiltonianPath {
-    let n = points.len();
-    let w = Weights::new(points);
+fn held_karp(w: &Weights) -> HamiltonianPath {
+    let n = w.n;
     if n <= 2 {
-        return finish((0..n).collect(), &w, true);
+        return finish((0..n).collect(), w, true);
     }
     let full = 1usize << n;
     let mut dp = vec![0.0f64; full * n];
@@ -202,7 +233,7 @@ fn held_karp(points: &[[f64; 3]]) -> HamiltonianPath {
         j = i;
         order.push(j);
     }
-    finish(order, &w, true)
+    finish(order, w, true)
 }
 
 /// Heuristic for P4, used beyond [`EXACT_MAX`] (works for any N). For each start node s, in
@@ -215,21 +246,24 @@ fn held_karp(points: &[[f64; 3]]) -> HamiltonianPath {
 /// The heaviest result wins (first one on ties). Deterministic; `exact: false`. Cost about
 /// O(N³) for the constructions plus O(N²) per local-search sweep.
 pub fn heuristic_path(points: &[[f64; 3]]) -> HamiltonianPath {
-    let n = points.len();
-    let w = Weights::new(points);
-    let mut best = finish((0..n).collect(), &w, false);
+    heuristic(&Weights::avoiding(points, |_, _| false))
+}
+
+fn heuristic(w: &Weights) -> HamiltonianPath {
+    let n = w.n;
+    let mut best = finish((0..n).collect(), w, false);
     if n <= 2 {
         return best;
     }
     let mut seen = HashSet::new();
     for start in 0..n {
-        let mut order = finish(greedy(&w, start), &w, false).order;
+        let mut order = finish(greedy(w, start), w, false).order;
         if !seen.insert(order.clone()) {
             continue;
         }
-        local_search(&w, &mut order);
-        let cand = finish(order, &w, false);
-        if cand.weight > best.weight {
+        local_search(w, &mut order);
+        let cand = finish(order, w, false);
+        if w.total(&cand.order) > w.total(&best.order) {
             best = cand;
         }
     }
@@ -409,6 +443,87 @@ mod tests {
             let bf = brute_force(&pts);
             prop_assert!(close(p.weight, bf), "{:?} vs {}", p, bf);
         }
+    }
+
+    /// Avoiding edges: on the line x = 0, 1, 2, 3 with 0–3 and 0–2 blocked, node 0 can only
+    /// join 1, so the best path is 0–1–3–2 (1 + 4 + 1 = 6), the brute-force optimum; with every
+    /// edge blocked, the plain longest path (17).
+    #[test]
+    fn blocked_edges_are_avoided_when_a_path_can() {
+        let pts: Vec<[f64; 3]> = (0..4).map(|x| [x as f64, 0.0, 0.0]).collect();
+        let blocked = |i: usize, j: usize| matches!((i, j), (0, 3) | (0, 2));
+        // brute force: the heaviest path among those with no blocked edge
+        let perms = permutations(4);
+        let best = perms
+            .iter()
+            .filter(|o| {
+                o.windows(2)
+                    .all(|e| !blocked(e[0].min(e[1]), e[0].max(e[1])))
+            })
+            .map(|o| weight(&pts, o))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let p = longest_path_avoiding(&pts, blocked);
+        assert_valid(4, &p);
+        assert!(p.edges().iter().all(|e| !blocked(e[0], e[1])), "{p:?}");
+        assert_eq!((p.order, p.weight), (vec![0, 1, 3, 2], 6.0));
+        assert_eq!(best, 6.0);
+        assert_eq!(longest_path_avoiding(&pts, |_, _| true).weight, 17.0);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// Against brute force: fewest blocked edges first, then the heaviest (the heuristic,
+        /// used beyond EXACT_MAX, promises a valid path only).
+        #[test]
+        fn avoiding_is_optimal(
+            pts in prop::collection::vec(prop::array::uniform3(-100.0..100.0f64), 2..=7),
+            mask in prop::collection::vec(any::<bool>(), 21),
+        ) {
+            let n = pts.len();
+            let blocked = |i: usize, j: usize| mask[i * n + j - (i + 1) * (i + 2) / 2];
+            let count = |o: &[usize]| {
+                o.windows(2).filter(|e| blocked(e[0].min(e[1]), e[0].max(e[1]))).count()
+            };
+            let perms = permutations(n);
+            let fewest = perms.iter().map(|o| count(o)).min().unwrap();
+            let best = perms
+                .iter()
+                .filter(|o| count(o) == fewest)
+                .map(|o| weight(&pts, o))
+                .fold(f64::NEG_INFINITY, f64::max);
+            let p = longest_path_avoiding(&pts, blocked);
+            prop_assert!(is_hamiltonian_path(n, &p.edges()));
+            prop_assert_eq!(count(&p.order), fewest);
+            prop_assert!(close(p.weight, best), "{:?} vs {}", p, best);
+            let h = heuristic(&Weights::avoiding(&pts, blocked));
+            prop_assert!(is_hamiltonian_path(n, &h.edges()));
+        }
+    }
+
+    fn permutations(n: usize) -> Vec<Vec<usize>> {
+        if n == 0 {
+            return vec![vec![]];
+        }
+        let mut out = Vec::new();
+        for p in permutations(n - 1) {
+            for i in 0..=p.len() {
+                let mut q = p.clone();
+                q.insert(i, n - 1);
+                out.push(q);
+            }
+        }
+        out
+    }
+
+    fn weight(pts: &[[f64; 3]], order: &[usize]) -> f64 {
+        order
+            .windows(2)
+            .map(|e| {
+                (0..3)
+                    .map(|c| (pts[e[0]][c] - pts[e[1]][c]).powi(2))
+                    .sum::<f64>()
+            })
+            .sum()
     }
 
     #[test]

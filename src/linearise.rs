@@ -240,6 +240,53 @@ mod tests {
             }
         }
 
+        /// The same for both ends of a segment over the keep-out field of a grid with NODATA
+        /// nodes (`Seafloor::keep_out`), the field the planner's floor, USV and line-of-sight
+        /// rows linearise: ∂g/∂P_a = (1 − s)(∇Z, −1), ∂g/∂P_b = s(∇Z, −1).
+        #[test]
+        fn keep_out_sample_gradient_matches_finite_differences(
+            holes in proptest::collection::vec((0usize..12, 0usize..10), 1..6),
+            a in proptest::array::uniform3(0.0..1.0f64),
+            b in proptest::array::uniform3(0.0..1.0f64),
+            s in 0.05..0.95f64,
+        ) {
+            let (nx, ny, d) = (12, 10, 20.0);
+            let z = (0..nx * ny).map(|k| -60.0 + (k % nx) as f64 - 0.5 * (k / nx) as f64).collect();
+            let mut nodata = vec![false; nx * ny];
+            for (i, j) in holes {
+                nodata[j * nx + i] = true;
+            }
+            let field = Seafloor::from_nodes(nx, ny, 0.0, 0.0, d, d, z, nodata)
+                .unwrap()
+                .keep_out();
+            let at = |u: [f64; 3]| [u[0] * 220.0, u[1] * 180.0, -100.0 * u[2]];
+            let (pa, pb) = (at(a), at(b));
+            let p = lerp(pa, pb, s);
+            let h = 1e-4;
+            let frac = |v: f64| (v / d).rem_euclid(1.0);
+            let margin = 2.0 * h / d + 1e-6;
+            prop_assume!([frac(p[0]), frac(p[1])].iter().all(|f| *f > margin && *f < 1.0 - margin));
+            let (_, grad) = floor_sample(&field, 0.25, pa, pb, s).unwrap();
+            for (end, weight) in [(0, 1.0 - s), (1, s)] {
+                let g = |q: [f64; 3]| {
+                    let (x, y) = if end == 0 { (q, pb) } else { (pa, q) };
+                    floor_sample(&field, 0.25, x, y, s).unwrap().0
+                };
+                let base = if end == 0 { pa } else { pb };
+                let analytic = [weight * grad[0], weight * grad[1], -weight];
+                for i in 0..3 {
+                    let (mut up, mut dn) = (base, base);
+                    up[i] += h;
+                    dn[i] -= h;
+                    let fd = (g(up) - g(dn)) / (2.0 * h);
+                    prop_assert!(
+                        (fd - analytic[i]).abs() < 1e-6 * (1.0 + analytic[i].abs()),
+                        "end {end} axis {i}: fd {fd} vs {}", analytic[i]
+                    );
+                }
+            }
+        }
+
         #[test]
         fn usv_away_gradient_matches_finite_differences(dx in -3e3..3e3f64, dy in -3e3..3e3f64) {
             let (_, g) = usv_away([dx, dy]);

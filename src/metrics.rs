@@ -5,8 +5,9 @@
 //! k = 0..K−1; K is taken from the USV path (`usv.position.len() − 1`). Nodes of the acoustic
 //! graph are the USV, at (x, y, 0), and the AUVs; a link is *usable* when its 3-D length is at
 //! most d_s + [`RANGE_TOL`] and it has line of sight: `floor.segment_clearance(a, b, r)` returns
-//! a minimum clearance ≥ 0 (an error from the query, e.g. an endpoint off the grid, counts as no
-//! line of sight). An AUV whose path is shorter than the USV's is absent at the missing steps:
+//! a minimum clearance ≥ 0 and no sample of it is over an obstacle cell (NODATA or land,
+//! `floor.segment_obstacle(a, b, r)`) (an error from the query, e.g. an endpoint off the grid,
+//! counts as no line of sight). An AUV whose path is shorter than the USV's is absent at the missing steps:
 //! it has no usable link there.
 
 use crate::plan::{Link, Metrics, Stage};
@@ -318,6 +319,10 @@ impl<'a> StepGraph<'a> {
                         .floor
                         .segment_clearance(a, b, self.p.resolution)
                         .is_ok_and(|c| c.min_clearance >= 0.0)
+                    && self
+                        .floor
+                        .segment_obstacle(a, b, self.p.resolution)
+                        .is_ok_and(|o| o.is_none())
             }
             _ => false,
         };
@@ -562,6 +567,37 @@ mod tests {
         let s = across_the_ridge();
         assert_eq!(first_cut_off(&s, &floor(-10.0), &P), Some((0, 1)));
         assert_eq!(first_cut_off(&s, &floor(-100.0), &P), None);
+    }
+
+    /// A NODATA node at (0, 10) makes the cells of y in [0, 10] beside it obstacles, though
+    /// the floor along y = 0 stays at −100 m: a link along y = 0 crosses them, one along
+    /// y = −20 does not.
+    #[test]
+    fn a_link_over_an_obstacle_cell_has_no_line_of_sight() {
+        let n = 41;
+        let mut nodata = vec![false; n * n];
+        nodata[21 * n + 20] = true;
+        let f = Seafloor::from_nodes(
+            n,
+            n,
+            -200.0,
+            -200.0,
+            10.0,
+            10.0,
+            vec![-100.0; n * n],
+            nodata,
+        )
+        .unwrap();
+        let s = stage(vec![[-60.0, 0.0]], vec![vec![[60.0, 0.0, -80.0]]]);
+        assert!(
+            f.segment_clearance([-60.0, 0.0, 0.0], [60.0, 0.0, -80.0], 1.0)
+                .unwrap()
+                .min_clearance
+                > 0.0
+        );
+        assert_eq!(first_cut_off(&s, &f, &P), Some((0, 0)));
+        let s = stage(vec![[-60.0, -20.0]], vec![vec![[60.0, -20.0, -80.0]]]);
+        assert_eq!(first_cut_off(&s, &f, &P), None);
     }
 
     #[test]

@@ -180,10 +180,12 @@ impl FloorSource {
     }
 }
 
-/// The window's start must satisfy the constraints that no input can change at k = 0.
+/// The window's start must satisfy the constraints that no input can change at k = 0, over the
+/// floor and over its keep-out field `keep_out` (`Seafloor::keep_out`).
 pub fn check_start(
     s: &Scenario,
     floor: &Seafloor,
+    keep_out: &Seafloor,
     start: &Start,
     window: usize,
 ) -> Result<(), PlanError> {
@@ -195,8 +197,17 @@ pub fn check_start(
             s.team.auvs
         ));
     }
+    let tol = s.scp.feasibility_tol;
     if let Some(why) = position_problem(floor, start.usv[0], start.usv[1]) {
         return bad(format!("the USV {why}"));
+    }
+    let [x, y] = start.usv;
+    let field = keep_out.elevation(x, y)?;
+    if field > tol {
+        return bad(format!(
+            "the USV at ({x:.1}, {y:.1}) is {}",
+            next_to_obstacle(field, floor.elevation(x, y)?)
+        ));
     }
     for (n, a) in start.auvs.iter().enumerate() {
         let p = a.position;
@@ -218,10 +229,21 @@ pub fn check_start(
             return bad(format!("AUV {n} {why}"));
         }
         let z = floor.elevation(p[0], p[1])?;
-        if p[2] < z + s.auv.floor_clearance - s.scp.feasibility_tol {
+        if p[2] < z + s.auv.floor_clearance - tol {
             return bad(format!(
                 "AUV {n} at z = {:.2} m is less than ε = {} m above the floor (z = {z:.2} m) (C2_2)",
                 p[2], s.auv.floor_clearance
+            ));
+        }
+        let field = keep_out.elevation(p[0], p[1])?;
+        if p[2] < field + s.auv.floor_clearance - tol {
+            return bad(format!(
+                "AUV {n} at ({:.1}, {:.1}, {:.1}) is {}; it needs ε = {} m of clearance above it",
+                p[0],
+                p[1],
+                p[2],
+                next_to_obstacle(field, z),
+                s.auv.floor_clearance
             ));
         }
         let v = (a.velocity.iter().map(|c| c * c).sum::<f64>()).sqrt();
@@ -233,6 +255,17 @@ pub fn check_start(
         }
     }
     Ok(())
+}
+
+/// Why a point off every obstacle cell is kept out of all the same: `field` is the keep-out
+/// field there and `z` the floor.
+fn next_to_obstacle(field: f64, z: f64) -> String {
+    format!(
+        "next to an obstacle cell (NODATA or land): the planner keeps every vehicle out of \
+         obstacle cells with a keep-out field that rises from the floor (here z = {z:.1} m) \
+         to above the surface over them, here z = {field:.1} m (at most one cell of margin; \
+         move the start away from the obstacle)"
+    )
 }
 
 /// Why a vehicle cannot start at (x, y): outside the grid, or in an obstacle cell (NODATA,
@@ -253,9 +286,14 @@ fn position_problem(floor: &Seafloor, x: f64, y: f64) -> Option<String> {
 }
 
 /// Algorithm 1, line 5: USV at the origin; AUVs at seeded random points in the half ball of
-/// radius d_s below it, at least surface_clearance below the surface and ε above the floor, at
+/// radius d_s below it, at least surface_clearance below the surface and ε above the floor's
+/// keep-out field `keep_out` (`Seafloor::keep_out`: the floor itself away from obstacles), at
 /// rest. Or the explicit `[initial]` of the scenario.
-pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, PlanError> {
+pub fn initial_state(
+    s: &Scenario,
+    floor: &Seafloor,
+    keep_out: &Seafloor,
+) -> Result<InitialState, PlanError> {
     if let Some(init) = &s.initial {
         return Ok(InitialState {
             origin: "explicit".into(),
@@ -297,7 +335,7 @@ pub fn initial_state(s: &Scenario, floor: &Seafloor) -> Result<InitialState, Pla
             if !floor.contains(p[0], p[1]) || floor.is_obstacle(p[0], p[1])? {
                 continue;
             }
-            if p[2] >= floor.elevation(p[0], p[1])? + s.auv.floor_clearance {
+            if p[2] >= keep_out.elevation(p[0], p[1])? + s.auv.floor_clearance {
                 found = Some(p);
                 break;
             }
@@ -462,7 +500,9 @@ pub fn plan_with_progress(
         dt: s.horizon.dt,
         max_speed: s.usv.max_speed,
     };
-    let initial = initial_state(s, floor)?;
+    // what the constraints see: every obstacle cell above the surface (built once per plan)
+    let keep_out = floor.keep_out();
+    let initial = initial_state(s, floor, &keep_out)?;
     let mut start = Start {
         usv: initial.usv,
         auvs: initial.auvs.clone(),
@@ -470,10 +510,10 @@ pub fn plan_with_progress(
     let mut windows = Vec::with_capacity(s.windows);
     let mut heading = None;
     for w in 0..s.windows {
-        check_start(s, floor, &start, w)?;
+        check_start(s, floor, &keep_out, &start, w)?;
         // Step 1 (P2), Algorithm 1 line 9
         let clock = Instant::now();
-        let mut p2 = TeamProblem::new(s, floor, auv, usv, start.clone());
+        let mut p2 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone());
         let out1 = crate::step1::solve(&mut p2, heading)?;
         let step1 = stage_record(&p2, &out1, out1.trace.len(), clock.elapsed().as_secs_f64());
         progress(Progress::Step1 {
@@ -481,7 +521,7 @@ pub fn plan_with_progress(
             stage: &step1,
         });
         // Step 2 (P3, P4), lines 13–16
-        let graph = crate::step2::solve(&out1.iterate);
+        let graph = crate::step2::solve(&out1.iterate, floor, s.acoustic.resolution);
         progress(Progress::Step2 {
             window: w,
             graph: &graph,
@@ -489,7 +529,8 @@ pub fn plan_with_progress(
         // Step 3 (P5) and line of sight, lines 17–22
         let clock = Instant::now();
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
-        let mut p5 = TeamProblem::new(s, floor, auv, usv, start.clone()).with_links(links);
+        let mut p5 =
+            TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone()).with_links(links);
         let out3 = crate::step3::solve(&mut p5, &out1.iterate)?;
         let final_ = stage_record(
             &p5,

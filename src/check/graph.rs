@@ -5,8 +5,9 @@
 //!
 //! A node is the USV (at its planned (x, y) and z = 0) or an AUV. A link has *line of sight*
 //! when every sample of 𝓛_r on the segment (`Seafloor::segment_clearance` at
-//! `scenario.acoustic.resolution`) is at or above the floor within [`LOS_TOL`]; a link whose end
-//! is outside the grid has none.
+//! `scenario.acoustic.resolution`) is at or above the floor within [`LOS_TOL`] and none is over
+//! an obstacle cell, NODATA or land (`obstacles`); a link whose end is outside the grid has
+//! none.
 //!
 //! A plan whose windows all have an empty `graph.a2u` (no Step 2 data: a planner that runs
 //! Step 1 only) skips these families: each is a PASS row with 0 checks and the note
@@ -22,7 +23,7 @@ use crate::seafloor::SegmentClearance;
 const SKIP_NOTE: &str = "no Step 2 graph in this plan";
 
 /// Position of a node at step k of a stage: the USV (`None`) at the surface, or AUV `n`.
-fn node(st: &Stage, who: Option<usize>, k: usize) -> Option<[f64; 3]> {
+pub(super) fn node(st: &Stage, who: Option<usize>, k: usize) -> Option<[f64; 3]> {
     match who {
         None => st.usv.position.get(k).map(|p| [p[0], p[1], 0.0]),
         Some(n) => st.auvs.get(n)?.position.get(k).copied(),
@@ -33,7 +34,7 @@ fn node_name(who: Option<usize>) -> String {
     who.map_or("USV".into(), |n| format!("AUV {n}"))
 }
 
-fn link_name(l: &Link) -> String {
+pub(super) fn link_name(l: &Link) -> String {
     match l.b {
         None => format!("A2U link AUV {}–USV", l.a),
         Some(b) => format!("A2A link AUV {}–AUV {b}", l.a),
@@ -512,12 +513,13 @@ impl Checker<'_> {
             for i in 0..=n {
                 for j in i + 1..=n {
                     let d = diff(pos[i], pos[j]);
+                    // in range: the clearance and the first obstacle crossed, if any
                     let los = if d <= d_s + LENGTH_TOL {
-                        Some(self.los(pos[i], pos[j]))
+                        Some((self.los(pos[i], pos[j]), self.crossing(pos[i], pos[j])))
                     } else {
                         None
                     };
-                    let ok = matches!(&los, Some(Ok(c)) if c.min_clearance >= -LOS_TOL);
+                    let ok = matches!(&los, Some((Ok(c), None)) if c.min_clearance >= -LOS_TOL);
                     link[i][j] = Some((d, los.clone(), ok));
                     link[j][i] = Some((d, los, ok));
                 }
@@ -553,12 +555,16 @@ impl Checker<'_> {
                 };
                 let why = match los {
                     None => format!("{d:.3} m > d_s = {d_s} m"),
-                    Some(Ok(c)) => format!(
+                    Some((_, Some(crossing))) => format!(
+                        "in range ({d:.3} m) but no line of sight: it crosses an obstacle \
+                         cell, {crossing}"
+                    ),
+                    Some((Ok(c), None)) => format!(
                         "in range ({d:.3} m) but no line of sight: clearance {:.3} m at \
                          ({:.2}, {:.2}, {:.2})",
                         c.min_clearance, c.at[0], c.at[1], c.at[2]
                     ),
-                    Some(Err(e)) => {
+                    Some((Err(e), None)) => {
                         format!("in range ({d:.3} m), line of sight not evaluated: {e}")
                     }
                 };

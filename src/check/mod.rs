@@ -30,6 +30,15 @@
 //! plan) or indices that name no vehicle are a "structure" failure and skipped by the other
 //! families.
 //!
+//! # Obstacles
+//!
+//! NODATA and land cells are obstacles (see [`crate::seafloor`]) that no path or link may cross.
+//! The family **no obstacle (NODATA/land)** samples by the rule of 𝓛_r (every sample, endpoints
+//! included) the segments of every AUV and of the USV (z = 0) in both stages, and every planned
+//! link of k = 1..=K in the final stage, and tests each sample with `Seafloor::obstacle`; a
+//! sample over an obstacle cell or off the grid has margin −1, tolerance 0. The family **inside
+//! the seafloor grid** holds the AUVs' and the USV's waypoints.
+//!
 //! # Steps 2 and 3 (the graph families)
 //!
 //! At every step k = 0..=K of every window (module `graph`):
@@ -47,7 +56,8 @@
 //!   [`OUT_OF_BAND_REL_TOL`] relative to max(length, 1 m)) and band.
 //! * **acoustic connectivity (range + line of sight)**: over the USV and the AUVs (final
 //!   positions), an edge joins two nodes within d_s + [`LENGTH_TOL`] whose segment has line of
-//!   sight (every sample of 𝓛_r at or above the floor within [`LOS_TOL`]); every AUV must reach
+//!   sight (every sample of 𝓛_r at or above the floor within [`LOS_TOL`], and none over an
+//!   obstacle cell: NODATA or land cannot be seen through); every AUV must reach
 //!   the USV. Margin = −(AUVs cut off), tolerance 0: the hard requirement, at 100 % of steps.
 //! * **planned chain line of sight**: for k = 1..=K every link of `links.links[k]` has line of
 //!   sight; margin = the segment's clearance, tolerance [`LOS_TOL`].
@@ -83,6 +93,7 @@
 mod graph;
 pub mod model;
 mod objective;
+mod obstacles;
 mod run;
 
 use crate::plan::{ObjectiveTerms, Plan};

@@ -92,7 +92,7 @@ pub(super) fn at(w: usize, k: usize, who: &str) -> String {
     format!("window {w}, k = {k}, {who}")
 }
 
-fn seg(w: usize, k: usize, who: &str) -> String {
+pub(super) fn seg(w: usize, k: usize, who: &str) -> String {
     format!("window {w}, k = {}→{k}, {who}", k - 1)
 }
 
@@ -552,16 +552,7 @@ impl Checker<'_> {
         for (w, pre, _, n, a) in self.auv_paths() {
             let who = format!("{pre}AUV {n}");
             for (k, p) in a.position.iter().enumerate().take(self.k.saturating_add(1)) {
-                // signed distance inside the extent (f64::min would hide a NaN)
-                let inside = if p[0].is_finite() && p[1].is_finite() {
-                    (p[0] - e.x_min)
-                        .min(e.x_max - p[0])
-                        .min(p[1] - e.y_min)
-                        .min(e.y_max - p[1])
-                } else {
-                    f64::NAN
-                };
-                fg.record(inside, || {
+                fg.record(inside(&e, p[0], p[1]), || {
                     at(w, k, &format!("{who} at ({}, {})", p[0], p[1]))
                 });
                 match self.floor.elevation(p[0], p[1]) {
@@ -639,6 +630,22 @@ impl Checker<'_> {
                 }
             }
         }
+        // the USV's waypoints are over the grid too, and its path and the planned links clear
+        // of obstacles
+        for (w, pre, st) in self.stages() {
+            for (k, p) in st
+                .usv
+                .position
+                .iter()
+                .enumerate()
+                .take(self.k.saturating_add(1))
+            {
+                fg.record(inside(&e, p[0], p[1]), || {
+                    at(w, k, &format!("{pre}USV at ({}, {})", p[0], p[1]))
+                });
+            }
+        }
+        self.usv_and_link_obstacles(&mut fo);
         vec![fg.finish(), fw.finish(), fs.finish(), fo.finish()]
     }
 
@@ -797,9 +804,26 @@ impl Checker<'_> {
     }
 }
 
+/// Signed distance of (x, y) inside the extent `e` (negative outside; NaN for a non-finite
+/// point: f64::min would hide a NaN).
+fn inside(e: &crate::seafloor::Extent, x: f64, y: f64) -> f64 {
+    if x.is_finite() && y.is_finite() {
+        (x - e.x_min)
+            .min(e.x_max - x)
+            .min(y - e.y_min)
+            .min(e.y_max - y)
+    } else {
+        f64::NAN
+    }
+}
+
 /// The samples of 𝓛_r on a → b: n + 1 evenly spaced points, n = max(1, ⌈horizontal length / r⌉),
 /// each kept inside the segment's bounding box. None when r is not positive or n is absurd.
-fn own_samples(a: [f64; 3], b: [f64; 3], r: f64) -> Option<impl Iterator<Item = [f64; 3]>> {
+pub(super) fn own_samples(
+    a: [f64; 3],
+    b: [f64; 3],
+    r: f64,
+) -> Option<impl Iterator<Item = [f64; 3]>> {
     /// More than this many samples on one segment means a corrupt plan or resolution.
     const MAX_SAMPLES: f64 = 1e7;
     let len = (b[0] - a[0]).hypot(b[1] - a[1]);

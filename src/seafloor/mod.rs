@@ -48,6 +48,7 @@ mod geotiff;
 mod geotiff_write;
 mod info;
 mod load;
+pub(crate) mod obstacles;
 mod resample;
 mod synthetic;
 
@@ -61,6 +62,7 @@ pub use info::{info, info_with_crs, GridInfo};
 pub use load::{
     load, Crs, GridFormat, Lattice, LoadOptions, LoadedFloor, NodeWindow, Region, Values,
 };
+pub use obstacles::{SegmentObstacle, KEEP_OUT_LIFT};
 pub use synthetic::{SyntheticParams, MAX_SYNTHETIC_FEATURES, MAX_SYNTHETIC_NODES_PER_AXIS};
 
 use sha2::{Digest, Sha256};
@@ -156,6 +158,8 @@ pub struct Seafloor {
     nodata: Vec<bool>,
     /// (min, max) of z over data nodes.
     z_range: (f64, f64),
+    /// Whether any node is NODATA or land (z ≥ 0), i.e. the grid has an obstacle cell.
+    obstacles: bool,
 }
 
 impl std::fmt::Debug for Seafloor {
@@ -244,6 +248,7 @@ impl Seafloor {
         if z_range.0 > z_range.1 {
             return invalid("every node is NODATA".to_string());
         }
+        let obstacles = z_range.1 >= 0.0 || nodata.contains(&true);
         Ok(Seafloor {
             nx,
             ny,
@@ -254,6 +259,7 @@ impl Seafloor {
             z,
             nodata,
             z_range,
+            obstacles,
         })
     }
 
@@ -333,6 +339,11 @@ impl Seafloor {
     /// `j * nx + i`.
     pub fn nodes(&self) -> (&[f64], &[bool]) {
         (&self.z, &self.nodata)
+    }
+
+    /// Whether the grid has an obstacle cell: a NODATA or a land node (z ≥ 0).
+    pub fn has_obstacles(&self) -> bool {
+        self.obstacles
     }
 
     /// Number of NODATA nodes and of land nodes (data, z ≥ 0).
@@ -427,6 +438,34 @@ impl Seafloor {
         b: [f64; 3],
         resolution: f64,
     ) -> Result<SegmentClearance, SeafloorError> {
+        let n = self.segment_intervals(a, b, resolution)?;
+        let sample = |k: usize| -> Result<SegmentClearance, SeafloorError> {
+            let fraction = k as f64 / n as f64;
+            let at = segment_point(a, b, fraction);
+            Ok(SegmentClearance {
+                min_clearance: at[2] - self.elevation(at[0], at[1])?,
+                at,
+                fraction,
+            })
+        };
+        let mut best = sample(0)?;
+        for k in 1..=n {
+            let c = sample(k)?;
+            if c.min_clearance < best.min_clearance {
+                best = c;
+            }
+        }
+        Ok(best)
+    }
+
+    /// n of 𝓛_r for the segment a → b, after checking its arguments (finite, both ends inside
+    /// the grid, a positive resolution, n at most [`MAX_SEGMENT_SAMPLES`]).
+    fn segment_intervals(
+        &self,
+        a: [f64; 3],
+        b: [f64; 3],
+        resolution: f64,
+    ) -> Result<usize, SeafloorError> {
         for (what, p) in [("segment start", a), ("segment end", b)] {
             for v in p {
                 finite(what, v)?;
@@ -446,24 +485,7 @@ impl Seafloor {
                 reason: format!("expected a positive length in metres, got {resolution}"),
             });
         }
-        let n = segment_samples(a, b, resolution)?;
-        let sample = |k: usize| -> Result<SegmentClearance, SeafloorError> {
-            let fraction = k as f64 / n as f64;
-            let at = segment_point(a, b, fraction);
-            Ok(SegmentClearance {
-                min_clearance: at[2] - self.elevation(at[0], at[1])?,
-                at,
-                fraction,
-            })
-        };
-        let mut best = sample(0)?;
-        for k in 1..=n {
-            let c = sample(k)?;
-            if c.min_clearance < best.min_clearance {
-                best = c;
-            }
-        }
-        Ok(best)
+        segment_samples(a, b, resolution)
     }
 
     /// Hex SHA-256 identifying the grid exactly. Hashed, in order: nx and ny as u64

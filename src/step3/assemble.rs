@@ -31,7 +31,7 @@ impl TeamProblem<'_> {
     }
 
     /// Columns of the 3 coordinates of a link end at step k (None: the USV's fixed z = 0).
-    fn end_columns(&self, k: usize, auv: Option<usize>) -> [Option<usize>; 3] {
+    pub(crate) fn end_columns(&self, k: usize, auv: Option<usize>) -> [Option<usize>; 3] {
         let l = self.layout;
         match auv {
             Some(n) => std::array::from_fn(|i| Some(l.auv_p(n, k) + i)),

@@ -14,7 +14,8 @@
 //!   that every AUV reaches the USV through links in range and in line of sight at every step,
 //!   is verified after the loop (`planner`, with `metrics::first_cut_off`) and by `shoal check`.
 //! - Line of sight (C1_13): after each P5 solve every planned link is tested with the seafloor's
-//!   𝓛_r query; a blocked link has its band's upper end lowered by `acoustic.los_shrink` (and
+//!   𝓛_r query over the keep-out field (`Seafloor::keep_out`), so a link over an obstacle cell
+//!   (NODATA or land) is blocked as one under the floor is; a blocked link has its band's upper end lowered by `acoustic.los_shrink` (and
 //!   the lower end with it when the band would close) and P5 is solved again from the last
 //!   plan, at most `acoustic.los_rounds` times.
 
@@ -26,6 +27,7 @@ pub use links::LinkSet;
 use crate::plan::{Band, Link, OutOfBand};
 use crate::planner::PlanError;
 use crate::scp::ScpOutcome;
+use crate::seafloor::Seafloor;
 use crate::team::TeamProblem;
 use crate::trajectory::Trajectory;
 
@@ -66,7 +68,7 @@ pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, Pla
                 outcome: out,
             });
         };
-        let blocked = blocked_links(problem.floor, set, &out.iterate, r);
+        let blocked = blocked_links(problem.floor, problem.keep_out, set, &out.iterate, r);
         if blocked.is_empty() {
             out.trace = trace;
             let links = set.clone();
@@ -103,9 +105,11 @@ fn lower_bands(set: &mut LinkSet, blocked: &[(usize, usize, String)], shrink: f6
     }
 }
 
-/// (k, link index, why) of every planned link at k = 1..=K without line of sight.
+/// (k, link index, why) of every planned link at k = 1..=K without line of sight over the
+/// keep-out field `keep_out` of `floor` (`floor` names the obstacle in the reason).
 fn blocked_links(
-    floor: &crate::seafloor::Seafloor,
+    floor: &Seafloor,
+    keep_out: &Seafloor,
     set: &LinkSet,
     t: &Trajectory,
     resolution: f64,
@@ -114,16 +118,33 @@ fn blocked_links(
     for k in 1..set.links.len() {
         for (li, &link) in set.links[k].iter().enumerate() {
             let (a, b) = links::ends(t, k, link);
-            match floor.segment_clearance(a, b, resolution) {
+            match keep_out.segment_clearance(a, b, resolution) {
                 Ok(c) if c.min_clearance >= 0.0 => {}
-                Ok(c) => out.push((
-                    k,
-                    li,
-                    format!(
-                        "the floor rises {:.1} m above the line at ({:.1}, {:.1}, {:.1})",
-                        -c.min_clearance, c.at[0], c.at[1], c.at[2]
-                    ),
-                )),
+                Ok(c) => {
+                    let why = match floor.segment_obstacle(a, b, resolution) {
+                        Ok(Some(o)) => format!(
+                            "the line crosses ({:.1}, {:.1}, {:.1}), which is {}",
+                            o.at[0], o.at[1], o.at[2], o.obstacle
+                        ),
+                        _ => {
+                            let raised = keep_out.elevation(c.at[0], c.at[1]).ok()
+                                > floor.elevation(c.at[0], c.at[1]).ok();
+                            format!(
+                                "the floor{} rises {:.1} m above the line at ({:.1}, {:.1}, {:.1})",
+                                if raised {
+                                    " (raised next to an obstacle cell)"
+                                } else {
+                                    ""
+                                },
+                                -c.min_clearance,
+                                c.at[0],
+                                c.at[1],
+                                c.at[2]
+                            )
+                        }
+                    };
+                    out.push((k, li, why));
+                }
                 Err(e) => out.push((k, li, e.to_string())),
             }
         }
@@ -162,7 +183,6 @@ pub fn describe(link: Link) -> String {
 mod tests {
     use super::*;
     use crate::plan::Graph;
-    use crate::seafloor::Seafloor;
 
     /// A floor at −100 m with a ridge rising to −20 m along x = 0.
     fn ridge() -> Seafloor {
@@ -201,7 +221,8 @@ mod tests {
     #[test]
     fn the_ridge_blocks_the_a2a_edge_and_only_it() {
         let (t, set) = team();
-        let blocked = blocked_links(&ridge(), &set, &t, 5.0);
+        let floor = ridge();
+        let blocked = blocked_links(&floor, &floor.keep_out(), &set, &t, 5.0);
         assert_eq!(blocked.len(), 1, "{blocked:?}");
         let (k, li, why) = &blocked[0];
         assert_eq!((*k, set.links[*k][*li]), (1, Link { a: 0, b: Some(1) }));
@@ -209,10 +230,33 @@ mod tests {
         assert_eq!(describe(set.links[1][1]), "A2A edge AUV 0–AUV 1");
     }
 
+    /// A NODATA node at (0, 25) on a flat floor at −100 m: the A2A edge along y = 0 has 40 m
+    /// of clearance over the floor but crosses the obstacle cells beside the node, so it is
+    /// blocked, and the reason names the obstacle.
+    #[test]
+    fn an_obstacle_cell_blocks_a_link_with_clearance() {
+        let (n, c, x0) = (41usize, 25.0, -500.0);
+        let mut nodata = vec![false; n * n];
+        nodata[21 * n + 20] = true;
+        let floor = Seafloor::from_nodes(n, n, x0, x0, c, c, vec![-100.0; n * n], nodata).unwrap();
+        let (t, set) = team();
+        let blocked = blocked_links(&floor, &floor.keep_out(), &set, &t, 5.0);
+        assert_eq!(blocked.len(), 1, "{blocked:?}");
+        let (k, li, why) = &blocked[0];
+        assert_eq!((*k, set.links[*k][*li]), (1, Link { a: 0, b: Some(1) }));
+        assert!(
+            why.starts_with("the line crosses (-25.0, 0.0, -60.0), which is over a NODATA cell"),
+            "{why}"
+        );
+        // over the floor alone the same edge would have been clear
+        assert!(blocked_links(&floor, &floor, &set, &t, 5.0).is_empty());
+    }
+
     #[test]
     fn a_blocked_links_band_is_lowered_and_stays_a_band() {
         let (t, mut set) = team();
-        let blocked = blocked_links(&ridge(), &set, &t, 5.0);
+        let floor = ridge();
+        let blocked = blocked_links(&floor, &floor, &set, &t, 5.0);
         lower_bands(&mut set, &blocked, 15.0);
         assert_eq!(
             set.bands[1][1],

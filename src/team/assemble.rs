@@ -4,10 +4,11 @@
 //!
 //! Rows, in cone order:
 //! - zero cone: USV dynamics eq. (9), AUV dynamics (discretised eqs. (5)–(7)) — C1_1;
-//! - nonnegative: underwater C1_4, grid bounds, linearised floor clearance C2_2 (waypoints and
-//!   segment samples), linearised heading rate C1_14, slacks ν ≥ 0;
+//! - nonnegative: underwater C1_4, grid bounds, linearised floor clearance C2_2 (segment
+//!   samples, over the keep-out field), the USV's linearised keep-out rows (over a grid with
+//!   obstacles), linearised heading rate C1_14, slacks ν ≥ 0;
 //! - second-order cones: USV speed, AUV speed C1_7, AUV–USV range C1_5 (k < K) and C1_6 (k = K),
-//!   trust region on AUV horizontal positions.
+//!   trust region on AUV horizontal positions (and on the USV's over a grid with obstacles).
 
 use super::TeamProblem;
 use crate::conic::Triplets;
@@ -18,7 +19,7 @@ use crate::trajectory::Trajectory;
 use clarabel::solver::SupportedConeT::{self, NonnegativeConeT, SecondOrderConeT, ZeroConeT};
 
 /// b of a padding row (0·x − ν + s = 1): always satisfied, never binding.
-const INACTIVE: f64 = 1.0;
+pub(super) const INACTIVE: f64 = 1.0;
 
 pub(crate) struct Assembly {
     pub p: Triplets,
@@ -109,6 +110,14 @@ impl TeamProblem<'_> {
                 }
                 m.q[l.floor_slack(n, k)] = penalty;
                 m.q[l.heading_slack(n, k)] = penalty * dt; // m/s → m over one step
+            }
+        }
+        if l.obstacles {
+            for k in 1..=kk {
+                m.q[l.usv_slack(k)] = penalty;
+                for li in 0..l.links {
+                    m.q[l.los_slack(li, k)] = penalty;
+                }
             }
         }
         let pk = l.usv_p(kk);
@@ -203,11 +212,22 @@ impl TeamProblem<'_> {
             m.grid_bounds(l.usv_p(k), &ext);
         }
         self.floor_rows(r, &mut m)?;
+        self.usv_rows(r, &mut m)?; // over a grid with obstacles
+        self.los_rows(r, &mut m)?; // Step 3 over a grid with obstacles
         self.heading_rows(r, &mut m);
         self.p5_rows(r, &mut m); // Step 3 only
         for n in 0..nn {
             for k in 1..=kk {
                 for col in [l.floor_slack(n, k), l.heading_slack(n, k)] {
+                    let row = m.row(0.0);
+                    m.a.push(row, col, -1.0);
+                }
+            }
+        }
+        if l.obstacles {
+            for k in 1..=kk {
+                let slacks = (0..l.links).map(|li| l.los_slack(li, k));
+                for col in std::iter::once(l.usv_slack(k)).chain(slacks) {
                     let row = m.row(0.0);
                     m.a.push(row, col, -1.0);
                 }
@@ -262,11 +282,24 @@ impl TeamProblem<'_> {
                 m.cones.push(SecondOrderConeT(3));
             }
         }
+        if l.obstacles {
+            // the USV's keep-out rows are linearised too: trust region on its positions
+            for k in 1..=kk {
+                let row = m.row(radius);
+                m.group(TRUST, row);
+                for i in 0..2 {
+                    let row = m.row(r.usv_p[k][i]);
+                    m.a.push(row, l.usv_p(k) + i, 1.0);
+                }
+                m.cones.push(SecondOrderConeT(3));
+            }
+        }
         self.p5_cones(&mut m); // Step 3 only
         Ok(m)
     }
 
-    /// C2_2 linearised at the segment samples of the reference. The samples are those of the
+    /// C2_2 linearised at the segment samples of the reference, over the keep-out field (so
+    /// that no sample can lie over an obstacle cell). The samples are those of the
     /// paper's 𝓛_r (fractions j/n, j = 1..=n, n = ⌈horizontal length / r⌉); of these, the
     /// `FLOOR_ROWS` with the least clearance on the reference (spread out: a sample next to one
     /// already taken is taken last) get a row, all sharing the group's slack ν_f[n][k]. The SCP
@@ -289,14 +322,14 @@ impl TeamProblem<'_> {
                 g.clear();
                 for j in 1..=used {
                     let sj = j as f64 / used as f64;
-                    g.push((floor_sample(self.floor, eps, pa, pb, sj)?.0, j));
+                    g.push((floor_sample(self.keep_out, eps, pa, pb, sj)?.0, j));
                 }
                 let picks = pick_samples(&mut g, FLOOR_ROWS);
                 for slot in 0..FLOOR_ROWS {
                     let row_data = match picks.get(slot) {
                         Some(&j) => {
                             let sj = j as f64 / used as f64;
-                            let (gv, grad) = floor_sample(self.floor, eps, pa, pb, sj)?;
+                            let (gv, grad) = floor_sample(self.keep_out, eps, pa, pb, sj)?;
                             let c = [grad[0], grad[1], -1.0];
                             // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
                             let ps = crate::linearise::lerp(pa, pb, sj);
@@ -374,7 +407,7 @@ pub(super) const FLOOR_ROWS: usize = 12;
 
 /// Up to `count` sample indices from (g, j) pairs: largest g first, skipping a neighbour (j ± 1)
 /// of one already taken until no other sample is left.
-fn pick_samples(g: &mut [(f64, usize)], count: usize) -> Vec<usize> {
+pub(super) fn pick_samples(g: &mut [(f64, usize)], count: usize) -> Vec<usize> {
     g.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
     let mut picks: Vec<usize> = Vec::with_capacity(count);
     for &(_, j) in g.iter() {

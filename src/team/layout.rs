@@ -5,7 +5,9 @@
 //! P_n[1..=K], V_n[1..=K], U_n[0..K), the floor slacks ν_f[1..=K] and heading slacks ν_h[1..=K].
 //! Step k = 0 is the window's fixed start and is not a variable. P5 (Step 3) appends, per step
 //! k = 1..=K and planned link l, the slacks of its band: σ (above the upper end, C5_2/C5_3's
-//! "< d_s") and ν (below the lower end, "> d_s − d_t").
+//! "< d_s") and ν (below the lower end, "> d_s − d_t"). Over a grid with obstacles come last
+//! the slacks ν_u[1..=K] of the USV's keep-out rows, then per planned link l and step k the
+//! slack ν_los[l][k] of its line-of-sight rows (P5 only).
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -15,12 +17,22 @@ pub struct Layout {
     pub n: usize,
     /// Planned acoustic links per step (0 for P2; N for P5: one A2U link and N − 1 A2A edges).
     pub links: usize,
+    /// Whether the grid has obstacles, so that the USV has keep-out rows and their slacks.
+    pub obstacles: bool,
 }
 
 impl Layout {
     const AUV_BLOCK: usize = 11;
 
     pub fn variables(&self) -> usize {
+        self.keep_out_base()
+            + if self.obstacles {
+                self.k * (1 + self.links)
+            } else {
+                0
+            }
+    }
+    fn keep_out_base(&self) -> usize {
         self.link_base() + 2 * self.links * self.k
     }
     fn link_base(&self) -> usize {
@@ -34,6 +46,18 @@ impl Layout {
     /// ν[l][k]: how far link l may fall below the lower end of its band at step k.
     pub fn band_lower_slack(&self, l: usize, k: usize) -> usize {
         self.band_upper_slack(l, k) + 1
+    }
+    /// ν_u[k]: slack of the USV's keep-out group of segment k−1 → k, k = 1..=K (only with
+    /// obstacles).
+    pub fn usv_slack(&self, k: usize) -> usize {
+        debug_assert!(self.obstacles && k >= 1 && k <= self.k);
+        self.keep_out_base() + (k - 1)
+    }
+    /// ν_los[l][k]: slack of the line-of-sight rows of link l at step k, k = 1..=K (only with
+    /// obstacles and links).
+    pub fn los_slack(&self, l: usize, k: usize) -> usize {
+        debug_assert!(self.obstacles && l < self.links && k >= 1 && k <= self.k);
+        self.keep_out_base() + self.k + l * self.k + (k - 1)
     }
     /// P_USV[k], k = 1..=K (2 entries).
     pub fn usv_p(&self, k: usize) -> usize {
@@ -83,15 +107,21 @@ mod tests {
     /// Every index is used exactly once, for sizes including the edge cases K = 1 and N = 1.
     #[test]
     fn indices_tile_the_variable_vector() {
-        for (k, n, links) in [
-            (1, 1, 0),
-            (1, 3, 3),
-            (2, 1, 1),
-            (20, 5, 0),
-            (20, 5, 5),
-            (7, 12, 12),
+        for (k, n, links, obstacles) in [
+            (1, 1, 0, false),
+            (1, 3, 3, true),
+            (2, 1, 1, false),
+            (20, 5, 0, true),
+            (20, 5, 5, false),
+            (20, 5, 5, true),
+            (7, 12, 12, false),
         ] {
-            let l = Layout { k, n, links };
+            let l = Layout {
+                k,
+                n,
+                links,
+                obstacles,
+            };
             let mut seen = vec![0u8; l.variables()];
             let mut mark = |i: usize, w: usize| (i..i + w).for_each(|j| seen[j] += 1);
             for s in 1..=k {
@@ -117,7 +147,18 @@ mod tests {
                     mark(l.band_lower_slack(li, s), 1);
                 }
             }
-            assert!(seen.iter().all(|&c| c == 1), "K={k} N={n} links={links}");
+            if obstacles {
+                for s in 1..=k {
+                    mark(l.usv_slack(s), 1);
+                    for li in 0..links {
+                        mark(l.los_slack(li, s), 1);
+                    }
+                }
+            }
+            assert!(
+                seen.iter().all(|&c| c == 1),
+                "K={k} N={n} links={links} obstacles={obstacles}"
+            );
         }
     }
 }

@@ -9,9 +9,17 @@
 //!   imposed at every sample of every segment between waypoints (the rule of 𝓛_r), not only at
 //!   the waypoints: 100 s apart, a seamount can sit between two waypoints.
 //! - C2_3/C2_4 are replaced by the linearised cone of `linearise::Heading`.
+//! - Obstacles (NODATA and land cells): every floor constraint (C2_2 rows, the true violation,
+//!   the first guess) uses the keep-out field of `Seafloor::keep_out`, in which every obstacle
+//!   cell lies above the surface, instead of the floor; over a grid with obstacles the USV too
+//!   keeps the field 0.25 m below the surface along its segments, P5 keeps every planned
+//!   link's line of sight over it (`keep_out`), and the first guess goes round obstacles
+//!   (`detour`). The objective's height term and the plan's records use the floor itself.
 //! - The whole is solved by SCvx (`scp`), with a trust region and a merit function.
 
 pub(crate) mod assemble;
+mod detour;
+mod keep_out;
 mod layout;
 
 pub use layout::Layout;
@@ -38,6 +46,8 @@ const GUESS_HEIGHT: f64 = 5.0;
 pub struct TeamProblem<'a> {
     pub(crate) scenario: &'a Scenario,
     pub(crate) floor: &'a Seafloor,
+    /// The keep-out field of `floor` (`Seafloor::keep_out`): what the constraints see.
+    pub(crate) keep_out: &'a Seafloor,
     auv: AuvModel,
     usv: UsvModel,
     start: Start,
@@ -68,9 +78,12 @@ pub struct Terms {
 }
 
 impl<'a> TeamProblem<'a> {
+    /// The window of `scenario` from `start` over `floor`, whose keep-out field
+    /// (`floor.keep_out()`, built once per plan by the caller) is `keep_out`.
     pub fn new(
         scenario: &'a Scenario,
         floor: &'a Seafloor,
+        keep_out: &'a Seafloor,
         auv: AuvModel,
         usv: UsvModel,
         start: Start,
@@ -79,10 +92,12 @@ impl<'a> TeamProblem<'a> {
             k: scenario.horizon.steps,
             n: scenario.team.auvs,
             links: 0,
+            obstacles: floor.has_obstacles(),
         };
         TeamProblem {
             scenario,
             floor,
+            keep_out,
             auv,
             usv,
             start,
@@ -128,7 +143,8 @@ impl<'a> TeamProblem<'a> {
     /// USV's from step 1 on (the ZOH model reaches a commanded velocity within one step), and it
     /// descends towards `GUESS_HEIGHT` above the floor ahead. Starting from AUVs that coast at
     /// rest instead, the trust region lets the team catch up with the USV only Δ metres per SCP
-    /// iteration, and a window took 50 iterations instead of about 10.
+    /// iteration, and a window took 50 iterations instead of about 10. Over a grid with
+    /// obstacles the USV's course goes round them (`detour`), the team still in formation.
     pub fn initial_guess(&self, previous_heading: Option<f64>) -> Trajectory {
         let s = self.scenario;
         let (kk, nn) = (self.layout.k, self.layout.n);
@@ -161,6 +177,11 @@ impl<'a> TeamProblem<'a> {
             q = [q[0] + v[0] * dt, q[1] + v[1] * dt, 0.0];
             usv_u.push(v);
         }
+        if self.layout.obstacles {
+            if let Some(u) = self.round_obstacles([q[0], q[1]], speed) {
+                usv_u = u;
+            }
+        }
         let m = &self.auv;
         let top = -s.auv.surface_clearance;
         let height = s.auv.floor_clearance + GUESS_HEIGHT;
@@ -175,7 +196,7 @@ impl<'a> TeamProblem<'a> {
                     .map(|&uk| {
                         let h = toward(p, uk);
                         let ahead = [p[0] + h[0] * dt, p[1] + h[1] * dt, 0.0];
-                        let z = (self.floor_linearisation(ahead).0 + height).min(top);
+                        let z = (self.keep_out_linearisation(ahead).0 + height).min(top);
                         let target = [h[0], h[1], (z - p[2]) / dt];
                         // deadbeat velocity: V[k+1] = vv·V[k] + vu·U[k] = target
                         let input: [f64; 3] =
@@ -262,12 +283,12 @@ impl<'a> TeamProblem<'a> {
         ]
     }
 
-    /// Worst floor-clearance violation (metres) of the segment k−1 → k of AUV n, sampled by the
-    /// seafloor's own 𝓛_r rule, and where it occurs.
+    /// Worst floor-clearance violation (metres) of the segment k−1 → k of AUV n over the
+    /// keep-out field, sampled by the seafloor's own 𝓛_r rule, and where it occurs.
     fn floor_violation(&self, t: &Trajectory, n: usize, k: usize) -> (f64, [f64; 3]) {
         let (a, b) = (t.auv_p[n][k - 1], t.auv_p[n][k]);
         match self
-            .floor
+            .keep_out
             .segment_clearance(a, b, self.scenario.acoustic.resolution)
         {
             Ok(c) => (self.scenario.auv.floor_clearance - c.min_clearance, c.at),
@@ -318,6 +339,14 @@ impl<'a> TeamProblem<'a> {
     pub(crate) fn floor_linearisation(&self, p: [f64; 3]) -> (f64, [f64; 2]) {
         let [x, y, _] = self.inside(p);
         self.floor
+            .elevation_and_gradient(x, y)
+            .unwrap_or((0.0, [0.0; 2]))
+    }
+
+    /// The same for the keep-out field.
+    pub(crate) fn keep_out_linearisation(&self, p: [f64; 3]) -> (f64, [f64; 2]) {
+        let [x, y, _] = self.inside(p);
+        self.keep_out
             .elevation_and_gradient(x, y)
             .unwrap_or((0.0, [0.0; 2]))
     }
@@ -418,6 +447,10 @@ impl ScpProblem for TeamProblem<'_> {
                 worst = worst.max(f).max(angle);
             }
         }
+        for (v, _) in self.keep_out_violations(t) {
+            sum += v.max(0.0);
+            worst = worst.max(v);
+        }
         let weighted = self.weighted(&self.terms(t));
         Evaluation {
             objective: weighted.iter().sum(),
@@ -429,26 +462,32 @@ impl ScpProblem for TeamProblem<'_> {
 
     fn infeasible(&self, t: &Trajectory) -> PlanError {
         let l = self.layout;
+        let eps = self.scenario.auv.floor_clearance;
         let mut worst = (0.0, String::new());
         for n in 0..l.n {
             for k in 1..=l.k {
                 let (f, at) = self.floor_violation(t, n, k);
                 if f > worst.0 {
-                    let floor = self.floor.elevation(at[0], at[1]).unwrap_or(f64::NAN);
-                    worst = (
-                        f,
-                        format!(
-                            "seafloor clearance C2_2: AUV {n} between steps {} and {k} passes \
-                             ({:.1}, {:.1}, {:.1}) where the floor is at z = {floor:.1} m; it \
-                             needs {:.1} m of clearance and has {:.2} m",
-                            k - 1,
-                            at[0],
-                            at[1],
-                            at[2],
-                            self.scenario.auv.floor_clearance,
-                            at[2] - floor
-                        ),
+                    let passes = format!(
+                        "AUV {n} between steps {} and {k} passes ({:.1}, {:.1}, {:.1})",
+                        k - 1,
+                        at[0],
+                        at[1],
+                        at[2]
                     );
+                    let detail = match self.obstacle_text(at) {
+                        Some(why) => format!("{}: {passes}, which is {why}", keep_out::OBSTACLE),
+                        None => {
+                            let floor = self.floor.elevation(at[0], at[1]).unwrap_or(f64::NAN);
+                            format!(
+                                "seafloor clearance C2_2: {passes} where the floor is at \
+                                 z = {floor:.1} m; it needs {eps:.1} m of clearance and has \
+                                 {:.2} m",
+                                at[2] - floor
+                            )
+                        }
+                    };
+                    worst = (f, detail);
                 }
                 let (_, angle) = self.heading_violation(t, n, k);
                 if angle > worst.0 {
@@ -462,6 +501,11 @@ impl ScpProblem for TeamProblem<'_> {
                         ),
                     );
                 }
+            }
+        }
+        for (v, what) in self.keep_out_violations(t) {
+            if v > worst.0 {
+                worst = (v, self.keep_out_detail(what));
             }
         }
         PlanError::Infeasible {

@@ -440,6 +440,39 @@ fn a_blocked_line_of_sight_cuts_an_auv_off() {
 }
 
 #[test]
+fn a_link_over_an_obstacle_cell_has_no_line_of_sight() {
+    // AUV 0 waits at (20, 10), AUV 1 at (20, 60): their link runs along x = 20, through the
+    // cells beside a NODATA node at (25, 35), where the floor along x = 20 is still −100 m
+    let mut sp = spec(1);
+    sp.auv0 = vec![[20.0, 10.0, -50.0], [20.0, 60.0, -60.0]];
+    sp.auv_u[0] = vec![vec![[0.0; 3]; K]; 2];
+    let floor = grid(-300.0, -300.0, 5.0, 121, |x, y| {
+        ((x - 25.0).abs() > 1e-6 || (y - 35.0).abs() > 1e-6).then_some(-100.0)
+    });
+    let plan = build(&sp, &floor);
+    let r = check_plan(&plan, &floor);
+    // the planned link crosses the obstacle at every step, with clearance; once the USV is
+    // east of x = 20, AUV 1's own line to it crosses too, and AUV 1 is cut off
+    assert_fails_exactly(&r, &["no obstacle (NODATA/land)", CONNECTED]);
+    let f = r.family("no obstacle (NODATA/land)").unwrap();
+    assert!(
+        f.where_
+            .contains("window 0, k = 1, A2A link AUV 0–AUV 1: sample")
+            && f.where_.contains("is over a NODATA cell"),
+        "{}",
+        f.where_
+    );
+    let f = r.family(CONNECTED).unwrap();
+    assert!(
+        f.where_.contains("cut off from the USV: AUV 1")
+            && f.where_.contains("it crosses an obstacle cell"),
+        "{}",
+        f.where_
+    );
+    assert!(r.family(CHAIN_LOS).unwrap().worst_margin > 0.0);
+}
+
+#[test]
 fn the_final_stage_is_the_plan() {
     let floor = flat();
     // Step 1 of window 0 took other inputs (slower AUVs) than the final stage: fine, as long as

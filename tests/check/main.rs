@@ -475,13 +475,44 @@ fn a_sample_over_nodata_fails_the_obstacle_family_only() {
         ((x - bad[0]).abs() > 1e-6 || (y - bad[1]).abs() > 1e-6).then_some(-100.0)
     });
     let r = check_plan(&build(&sp, &floor), &floor);
-    // a NODATA node is stored at 0 m: the A2A link leaving AUV 0 at k = 1 runs into it too
+    // a NODATA node is stored at 0 m: the A2A link leaving AUV 0 at k = 1 runs into it too;
+    // and every link from AUV 0 at k = 0 starts over an obstacle cell, so it has no line of
+    // sight: AUV 0 is cut off
     assert_fails_exactly(
         &r,
-        &["no obstacle (NODATA/land)", "planned chain line of sight"],
+        &[
+            "no obstacle (NODATA/land)",
+            "acoustic connectivity (range + line of sight)",
+            "planned chain line of sight",
+        ],
     );
     let f = r.family("no obstacle (NODATA/land)").unwrap();
     assert!(f.where_.contains("k = 0→1, AUV 0"), "{}", f.where_);
+}
+
+#[test]
+fn a_usv_over_an_obstacle_cell_fails_the_obstacle_family() {
+    // the USV runs east along y = 0 from the origin; a NODATA node at (30, 5) makes the cells
+    // of y in [0, 5] beside it obstacles, though the floor along y = 0 stays at −100 m
+    let sp = spec(1);
+    let floor = grid(-300.0, -300.0, 5.0, 121, |x, y| {
+        ((x - 30.0).abs() > 1e-6 || (y - 5.0).abs() > 1e-6).then_some(-100.0)
+    });
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert!(
+        failing(&r).contains(&"no obstacle (NODATA/land)"),
+        "{}",
+        r.table()
+    );
+    let f = r.family("no obstacle (NODATA/land)").unwrap();
+    assert!(
+        f.where_.contains("window 0, k = 2→3, USV: sample")
+            && f.where_.contains("is over a NODATA cell"),
+        "{}",
+        f.where_
+    );
+    // the same path over the grid without the hole is clear
+    assert!(check_plan(&build(&sp, &flat()), &flat()).passed());
 }
 
 #[test]
