@@ -17,9 +17,9 @@
 //! - Values are elevations after the sign convention (depths are negated), as the planner reads
 //!   them.
 
-use super::crs::{resolve, CrsSource};
+use super::crs::CrsSource;
 use super::geo::LocalFrame;
-use super::load::{apply, Crs, GridFile, Lattice, NodeWindow, Values, MAX_LOAD_NODES};
+use super::load::{apply, Crs, Lattice, NodeWindow, OpenedGrid, Values, MAX_LOAD_NODES};
 use super::{Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
 use std::path::Path;
 
@@ -70,17 +70,14 @@ pub struct ExportedGrid {
 /// and the option at fault.
 pub fn export_grid(path: &Path, opts: &ExportOptions) -> Result<ExportedGrid, SeafloorError> {
     let name = path.display().to_string();
-    let (mut file, format) = GridFile::open(path)?;
-    let native = file.lattice();
-    let mut warnings = file.warnings();
-    let (crs, crs_source) = resolve(
-        path,
-        format,
-        file.crs(),
-        &native,
-        opts.crs.as_deref(),
-        &mut warnings,
-    )?;
+    let OpenedGrid {
+        mut file,
+        native,
+        crs,
+        crs_source,
+        warnings,
+        ..
+    } = OpenedGrid::open(path, opts.crs.as_deref())?;
     let geographic = matches!(crs, Crs::Geographic { .. });
     let fail = |option: &'static str, reason: String| SeafloorError::Crop {
         path: name.clone(),

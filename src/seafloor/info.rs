@@ -1,8 +1,8 @@
 //! `shoal seafloor info FILE`: what a grid file holds, read chunk by chunk without loading it.
 
-use super::crs::{resolve, CrsSource};
+use super::crs::CrsSource;
 use super::geo::LocalFrame;
-use super::load::{frame_for, sign_warning, Crs, GridFile, GridFormat, Lattice, Values};
+use super::load::{frame_for, sign_warning, Crs, GridFormat, Lattice, OpenedGrid, Values};
 use super::SeafloorError;
 use std::fmt;
 use std::path::Path;
@@ -53,11 +53,15 @@ pub fn info_with_crs(
     declared: Option<&str>,
 ) -> Result<GridInfo, SeafloorError> {
     let name = path.display().to_string();
-    let (mut file, format) = GridFile::open(path)?;
-    let native = file.lattice();
+    let OpenedGrid {
+        mut file,
+        format,
+        native,
+        crs,
+        crs_source,
+        mut warnings,
+    } = OpenedGrid::open(path, declared)?;
     let driver = file.driver();
-    let mut warnings = file.warnings();
-    let (crs, crs_source) = resolve(path, format, file.crs(), &native, declared, &mut warnings)?;
     let (mut data, mut nodata, mut land, mut pos, mut neg) = (0, 0, 0, 0, 0);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     let sign = if values == Values::Depth { -1.0 } else { 1.0 };

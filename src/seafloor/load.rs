@@ -312,20 +312,47 @@ fn open_gdal(path: &Path) -> Result<GridFile, SeafloorError> {
     })
 }
 
+/// A grid file opened, with its lattice, its warnings and its CRS resolved from the file, a
+/// sidecar or the declaration (see [`super::crs`]): the common start of [`load`], `info` and
+/// the export's crop.
+pub(crate) struct OpenedGrid {
+    pub file: GridFile,
+    pub format: GridFormat,
+    pub native: Lattice,
+    pub crs: Crs,
+    pub crs_source: CrsSource,
+    pub warnings: Vec<String>,
+}
+
+impl OpenedGrid {
+    pub(crate) fn open(path: &Path, declared: Option<&str>) -> Result<OpenedGrid, SeafloorError> {
+        let (file, format) = GridFile::open(path)?;
+        let native = file.lattice();
+        let mut warnings = file.warnings();
+        let (crs, crs_source) =
+            resolve(path, format, file.crs(), &native, declared, &mut warnings)?;
+        Ok(OpenedGrid {
+            file,
+            format,
+            native,
+            crs,
+            crs_source,
+            warnings,
+        })
+    }
+}
+
 /// Loads a grid file (see the module docs). Errors name the file.
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedFloor, SeafloorError> {
     let name = path.display().to_string();
-    let (mut file, format) = GridFile::open(path)?;
-    let native = file.lattice();
-    let mut warnings = file.warnings();
-    let (crs, crs_source) = resolve(
-        path,
+    let OpenedGrid {
+        mut file,
         format,
-        file.crs(),
-        &native,
-        opts.crs.as_deref(),
-        &mut warnings,
-    )?;
+        native,
+        crs,
+        crs_source,
+        mut warnings,
+    } = OpenedGrid::open(path, opts.crs.as_deref())?;
     let region_error = |reason: String| SeafloorError::Region {
         path: name.clone(),
         reason,
