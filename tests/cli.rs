@@ -1,10 +1,12 @@
 //! End-to-end tests: plan with the library and the `shoal` binary, then verify with the
 //! independent checker.
 
+mod common;
+use common::shoal;
+
 use shoal::planner::{plan, scenario_floor, PlanError, PlanInput};
 use shoal::scenario::{self, Scenario};
 use std::path::Path;
-use std::process::Command;
 
 /// A small scenario that still exercises every constraint family: 2 AUVs, 8 steps, 2 windows.
 fn small(seed: u64) -> Scenario {
@@ -79,10 +81,6 @@ fn unstable_euler_is_refused_with_the_reason() {
     let s = scenario::default_with(&["auv.discretisation=euler".into()]).unwrap();
     let msg = plan_only(&s).unwrap_err().to_string();
     assert!(msg.contains("unstable") && msg.contains("zoh"), "{msg}");
-}
-
-fn shoal() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shoal"))
 }
 
 #[test]

@@ -11,20 +11,6 @@ use shoal::seafloor::{
     SeafloorError, TiffCompression, Values,
 };
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn shoal() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shoal"))
-}
-
-fn run(cmd: &mut Command) -> (i32, String, String) {
-    let out = cmd.output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
 
 fn declared(path: &Path, crs: Option<&str>) -> Result<LoadedFloor, SeafloorError> {
     load(

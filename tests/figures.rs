@@ -1,15 +1,13 @@
 //! Figures: `shoal plot` and `shoal plan --plot/--no-plot` write every figure as a PNG that
 //! decodes and an SVG that parses, with the axis labels in it; bad input names the file.
 
+mod common;
+use common::shoal;
+
 use shoal::figures::{FIGURES, TABLE};
 use shoal::planner::{plan, scenario_floor, PlanInput};
 use shoal::scenario;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn shoal() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shoal"))
-}
 
 /// A small plan (2 AUVs, 6 steps, 2 windows) written to `dir/plan.json`.
 fn small_plan(dir: &Path) -> (shoal::plan::Plan, PathBuf) {

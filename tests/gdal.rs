@@ -18,19 +18,6 @@ use shoal::seafloor::{
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn shoal() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shoal"))
-}
-
-fn run(cmd: &mut Command) -> (i32, String, String) {
-    let out = cmd.output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
-
 /// `gdal_translate -q ARGS SRC DST`, which must succeed.
 fn translate(src: &Path, dst: &Path, args: &[&str]) -> PathBuf {
     let out = Command::new("gdal_translate")

@@ -10,11 +10,6 @@ use shoal::planner::{plan, scenario_floor, PlanError, PlanInput};
 use shoal::scenario::{self, Scenario};
 use shoal::seafloor::{load, LoadOptions, SampleType, TiffCompression, TiffLayout};
 use std::path::Path;
-use std::process::Command;
-
-fn shoal() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shoal"))
-}
 
 /// 2 AUVs, K = 5, one window over the grid file `floor`, plus `extra` overrides.
 fn small(floor: &Path, extra: &[&str]) -> Scenario {
@@ -42,15 +37,6 @@ fn plan_and_check(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
     let rebuilt = load_floor(&p, None).expect("the checker loads the plan's floor");
     assert_eq!(rebuilt.fingerprint(), floor.fingerprint());
     Ok(p)
-}
-
-fn run(cmd: &mut Command) -> (i32, String, String) {
-    let out = cmd.output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
 }
 
 #[test]

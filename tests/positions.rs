@@ -11,11 +11,6 @@ use shoal::scenario::{self, Scenario};
 use shoal::seafloor::geo::{meridional_radius, prime_vertical_radius};
 use shoal::seafloor::{SampleType, TiffCompression, TiffLayout};
 use std::path::Path;
-use std::process::Command;
-
-fn shoal() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shoal"))
-}
 
 fn plan_over(s: &Scenario) -> Plan {
     let (floor, source) = scenario_floor(s, Path::new("")).unwrap();

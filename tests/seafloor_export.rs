@@ -10,20 +10,6 @@ use shoal::seafloor::{
     Seafloor, SeafloorError, TiffCompression,
 };
 use std::path::Path;
-use std::process::Command;
-
-fn shoal() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shoal"))
-}
-
-fn run(cmd: &mut Command) -> (i32, String, String) {
-    let out = cmd.output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
 
 fn utm_tif(dir: &Path) -> std::path::PathBuf {
     let (l, z, nd) = survey();

@@ -6,6 +6,7 @@ use shoal::seafloor::{
     TiffCompression, TiffLayout, Values,
 };
 use std::path::{Path, PathBuf};
+use std::process::Command;
 
 pub const UTM: Crs = Crs::Projected {
     epsg: Some(32631),
@@ -103,4 +104,19 @@ pub fn geographic() -> (Lattice, Vec<f64>, Vec<bool>) {
 
 pub fn geo_depth(lat: f64, lon: f64) -> f64 {
     -150.0 + 400.0 * (lat - 43.0) - 300.0 * (lon - 5.0)
+}
+
+/// The shoal binary of this build.
+pub fn shoal() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_shoal"))
+}
+
+/// Runs a command: (exit code, stdout, stderr).
+pub fn run(cmd: &mut Command) -> (i32, String, String) {
+    let out = cmd.output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
 }
