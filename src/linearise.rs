@@ -7,7 +7,7 @@
 use crate::seafloor::{Seafloor, SeafloorError};
 
 /// Heading-rate constraint C1_14 between consecutive horizontal velocities a = V_h[k−1] and
-/// b = V_h[k]: the angle between them must not exceed θ = ψ̇_max·δ (for θ < 90°).
+/// b = V_h\[k\]: the angle between them must not exceed θ = ψ̇_max·δ (for θ < 90°).
 ///
 /// With ĥ = a/‖a‖ and n̂ = ĥ rotated by +90°, the angle condition is |n̂·b| ≤ tan θ · (ĥ·b), i.e.
 /// the two functions
@@ -97,7 +97,7 @@ pub fn segment_intervals(a: [f64; 3], b: [f64; 3], resolution: f64) -> usize {
     ((l / resolution).ceil() as usize).max(1)
 }
 
-/// The concave USV term −‖d‖² of OF1_8 (d = P_USV[K] − P_USV[0]) linearised about d̄:
+/// The concave USV term −‖d‖² of OF1_8 (d = P_USV\[K\] − P_USV\[0\]) linearised about d̄:
 /// returns (value at d̄, gradient −2d̄).
 pub fn usv_away(d_ref: [f64; 2]) -> (f64, [f64; 2]) {
     (

@@ -55,7 +55,7 @@ pub struct SeafloorRecord {
     /// "synthetic", "esri-ascii" or "geotiff" ("" in plans written before it was recorded).
     #[serde(default)]
     pub format: String,
-    /// CRS of the grid file: "EPSG:<code>", "projected (user-defined)", "geographic
+    /// CRS of the grid file: `"EPSG:<code>"`, "projected (user-defined)", "geographic
     /// (user-defined)" or "none" (synthetic, ESRI ASCII, a GeoTIFF without GeoKeys).
     #[serde(default = "crs_none")]
     pub crs: String,
@@ -166,7 +166,7 @@ pub struct LinkReport {
 /// Mission metrics (per window, and over the mission in `Plan::metrics`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Metrics {
-    /// Σ ‖U_n[k]‖² over AUVs and steps, (m/s²)².
+    /// Σ ‖U_n\[k\]‖² over AUVs and steps, (m/s²)².
     pub input_energy: f64,
     /// Area of seafloor swept by the union of the AUVs' sensor swaths, km².
     pub explored_area_km2: f64,
@@ -207,13 +207,13 @@ pub struct Stage {
 /// The objective terms of P2, unweighted, and the weighted total.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
 pub struct ObjectiveTerms {
-    /// OF1_1: Σ_k Σ_n ‖U_n[k]‖², (m/s²)².
+    /// OF1_1: Σ_k Σ_n ‖U_n\[k\]‖², (m/s²)².
     pub energy: f64,
-    /// Σ_k Σ_n z_n[k], metres (k = 1..K): OF1_2 when weights.of1_2 = "depth".
+    /// Σ_k Σ_n z_n\[k\], metres (k = 1..K): OF1_2 when weights.of1_2 = "depth".
     pub depth: f64,
-    /// Σ_k Σ_n (z_n[k] − Z(x_n[k], y_n[k])), metres: OF1_2 when weights.of1_2 = "height".
+    /// Σ_k Σ_n (z_n\[k\] − Z(x_n\[k\], y_n\[k\])), metres: OF1_2 when weights.of1_2 = "height".
     pub height: f64,
-    /// OF1_8: ‖P_USV[K] − P_USV[0]‖², m² (objective "away"), or OF1_8_2: ‖P_USV[K] − dest‖², m².
+    /// OF1_8: ‖P_USV\[K\] − P_USV\[0\]‖², m² (objective "away"), or OF1_8_2: ‖P_USV\[K\] − dest‖², m².
     pub usv: f64,
     /// OF1_5 (Step 3): Σ_k Σ ‖P_i − P_j‖² over AUV pairs not joined by an A2A edge, m².
     #[serde(default)]
@@ -229,23 +229,23 @@ pub struct ObjectiveTerms {
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct UsvPath {
-    /// P_USV[k], k = 0..=K.
+    /// P_USV\[k\], k = 0..=K.
     pub position: Vec<[f64; 2]>,
-    /// U_USV[k] (velocity, m/s), k = 0..K−1.
+    /// U_USV\[k\] (velocity, m/s), k = 0..K−1.
     pub input: Vec<[f64; 2]>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AuvPath {
-    /// P_n[k], k = 0..=K.
+    /// P_n\[k\], k = 0..=K.
     pub position: Vec<[f64; 3]>,
-    /// V_n[k], k = 0..=K.
+    /// V_n\[k\], k = 0..=K.
     pub velocity: Vec<[f64; 3]>,
-    /// U_n[k] (m/s²), k = 0..K−1.
+    /// U_n\[k\] (m/s²), k = 0..K−1.
     pub input: Vec<[f64; 3]>,
-    /// Surge speed v_x[k] = ‖(V_x, V_y)‖, k = 0..=K.
+    /// Surge speed v_x\[k\] = ‖(V_x, V_y)‖, k = 0..=K.
     pub surge_speed: Vec<f64>,
-    /// Heading ψ[k] = atan2(V_y, V_x) in radians, or null where the horizontal speed is below
+    /// Heading ψ\[k\] = atan2(V_y, V_x) in radians, or null where the horizontal speed is below
     /// auv.min_heading_speed (heading undefined), k = 0..=K.
     pub heading: Vec<Option<f64>>,
 }

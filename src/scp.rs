@@ -2,7 +2,7 @@
 //! SCvx (Mao, Szmuk, Açıkmeşe, 2018) and Malyuta et al., "Convex Optimization for Trajectory
 //! Generation", IEEE Control Systems 2022, §"SCvx".
 //!
-//! The paper (Section IV-A) solves P2 "in an iterative manner where after each iteration Z_n[k]
+//! The paper (Section IV-A) solves P2 "in an iterative manner where after each iteration Z_n\[k\]
 //! is found and bounded" with no safeguard; a plain fixed-point iteration of that kind stalls or
 //! oscillates against a steep floor. Here every nonconvex constraint g(x) ≤ 0 is linearised about
 //! the reference iterate x̄ and softened with a penalised slack ν ≥ 0 (virtual control), the

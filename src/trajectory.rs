@@ -13,15 +13,15 @@ pub struct Start {
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
-    /// P_USV[k], k = 0..=K.
+    /// P_USV\[k\], k = 0..=K.
     pub usv_p: Vec<[f64; 2]>,
-    /// U_USV[k], k = 0..K−1.
+    /// U_USV\[k\], k = 0..K−1.
     pub usv_u: Vec<[f64; 2]>,
-    /// P_n[k], n = 0..N−1, k = 0..=K.
+    /// P_n\[k\], n = 0..N−1, k = 0..=K.
     pub auv_p: Vec<Vec<[f64; 3]>>,
-    /// V_n[k].
+    /// V_n\[k\].
     pub auv_v: Vec<Vec<[f64; 3]>>,
-    /// U_n[k], k = 0..K−1.
+    /// U_n\[k\], k = 0..K−1.
     pub auv_u: Vec<Vec<[f64; 3]>>,
 }
 

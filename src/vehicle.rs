@@ -12,14 +12,14 @@
 //! eq. (5) would be unstable in open loop; the damping rate is e = −γ_v/(m − γ_v̇) > 0, which is
 //! what we use.
 //!
-//! **Discretisation.** Eq. (8) is forward Euler: V[k+1] = (1 − δe)V[k] + δU[k]. With a REMUS 100's
+//! **Discretisation.** Eq. (8) is forward Euler: V\[k+1\] = (1 − δe)V\[k\] + δU\[k\]. With a REMUS 100's
 //! surge damping (e ≈ 0.15 s⁻¹) and δ = 100 s, 1 − δe ≈ −14.5: the discrete velocity oscillates
 //! and grows without bound although the vehicle is stable. We default to the exact zero-order-hold
 //! (ZOH) discretisation of the same continuous model, and keep Euler as an option that is refused
 //! when |1 − δe| > 1.
 //!
 //! A useful property of ZOH: within a step, V(t) moves monotonically along the straight line from
-//! V[k] towards U/e and V[k+1] lies on it, so ‖V(t)‖ ≤ max(‖V[k]‖, ‖V[k+1]‖): the speed limit C1_7
+//! V\[k\] towards U/e and V\[k+1\] lies on it, so ‖V(t)‖ ≤ max(‖V\[k\]‖, ‖V\[k+1\]‖): the speed limit C1_7
 //! imposed at the waypoints holds for the whole continuous trajectory.
 
 use crate::scenario::{Auv, Discretisation};
@@ -89,8 +89,8 @@ impl Damping {
 
 /// The discrete AUV model, per axis i ∈ {x, y, z} (diagonal, so three scalars per coefficient):
 ///
-///   P_i[k+1] = P_i[k] + pv_i·V_i[k] + pu_i·U_i[k]
-///   V_i[k+1] = vv_i·V_i[k] + vu_i·U_i[k]
+///   P_i\[k+1\] = P_i\[k\] + pv_i·V_i\[k\] + pu_i·U_i\[k\]
+///   V_i\[k+1\] = vv_i·V_i\[k\] + vu_i·U_i\[k\]
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct AuvModel {
     pub dt: f64,
@@ -185,7 +185,7 @@ impl AuvModel {
     }
 }
 
-/// The USV model of eq. (9): P[k+1] = P[k] + δ·U[k], U the 2D velocity, ‖U‖ ≤ max_speed.
+/// The USV model of eq. (9): P\[k+1\] = P\[k\] + δ·U\[k\], U the 2D velocity, ‖U‖ ≤ max_speed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct UsvModel {
     pub dt: f64,

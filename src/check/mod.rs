@@ -90,11 +90,13 @@
 //! | acoustic connectivity | 0 AUVs cut off; range [`LENGTH_TOL`], line of sight [`LOS_TOL`] | the hard requirement |
 //! | planned chain line of sight | [`LOS_TOL`] = 1e-6 m | |
 
+mod floor;
 mod graph;
 pub mod model;
 mod objective;
 mod obstacles;
 mod run;
+mod vehicles;
 
 use crate::plan::{ObjectiveTerms, Plan};
 use crate::seafloor::{load, LoadOptions, Region, Seafloor, SeafloorError};

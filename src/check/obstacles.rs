@@ -1,4 +1,4 @@
-//! Obstacles beyond the AUV paths (whose samples `run` tests): the USV's path and the planned
+//! Obstacles beyond the AUV paths (whose samples `floor` tests): the USV's path and the planned
 //! acoustic links may not cross an obstacle cell (NODATA or land) either, and a link over one
 //! has no line of sight (used by the connectivity family of `graph`).
 //!

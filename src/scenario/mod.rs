@@ -191,7 +191,7 @@ pub struct SeafloorSpec {
     /// Mission origin [latitude, longitude], degrees, of the local metric frame of a
     /// geographic grid (default: the grid's centre). Only for geographic grids.
     pub origin: Option<[f64; 2]>,
-    /// The grid file's CRS, "EPSG:<code>": for a file that has none (ESRI ASCII without a .prj
+    /// The grid file's CRS, `"EPSG:<code>"`: for a file that has none (ESRI ASCII without a .prj
     /// sidecar), or to assert a file's own (a conflict is an error).
     pub crs: Option<String>,
     pub synthetic: crate::seafloor::SyntheticParams,

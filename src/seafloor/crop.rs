@@ -38,7 +38,7 @@ pub enum CropRegion {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExportOptions {
     pub values: Values,
-    /// A declared CRS, as `seafloor.crs` ("EPSG:<code>").
+    /// A declared CRS, as `seafloor.crs` (`"EPSG:<code>"`).
     pub crs: Option<String>,
     pub region: CropRegion,
     /// Resample onto cells of this size, metres (see the module docs); None: crop only.

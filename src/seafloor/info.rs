@@ -46,7 +46,7 @@ pub fn info(path: &Path, values: Values) -> Result<GridInfo, SeafloorError> {
     info_with_crs(path, values, None)
 }
 
-/// [`info`] with a declared CRS ("EPSG:<code>", as `seafloor.crs`; see [`super::crs`]).
+/// [`info`] with a declared CRS (`"EPSG:<code>"`, as `seafloor.crs`; see `seafloor::crs`).
 pub fn info_with_crs(
     path: &Path,
     values: Values,

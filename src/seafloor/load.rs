@@ -176,7 +176,7 @@ pub struct LoadOptions {
     pub origin: Option<[f64; 2]>,
     pub region: Region,
     /// The grid's CRS as declared by the user (`seafloor.crs`, e.g. "EPSG:4326"): the CRS of a
-    /// file without one (ESRI ASCII), checked against a file's own (see [`super::crs`]).
+    /// file without one (ESRI ASCII), checked against a file's own (see `seafloor::crs`).
     pub crs: Option<String>,
 }
 

@@ -25,7 +25,8 @@
 //! - the price is at most one cell of conservatism: a cell next to an obstacle cell shares wall
 //!   nodes, so its field ramps up to the wall and the vehicles keep out of part of it.
 
-use super::{segment_point, Obstacle, Seafloor, SeafloorError, MAX_ABS_ELEVATION};
+use super::field::segment_point;
+use super::{Obstacle, Seafloor, SeafloorError, MAX_ABS_ELEVATION};
 
 /// How far above the surface (metres) the keep-out field lifts the edge of an obstacle. Any
 /// positive height keeps every vehicle out; 1 m is well above the SCP's feasibility tolerance

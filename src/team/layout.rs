@@ -38,33 +38,33 @@ impl Layout {
     fn link_base(&self) -> usize {
         4 * self.k + Self::AUV_BLOCK * self.k * self.n
     }
-    /// σ[l][k]: how far link l may exceed the upper end of its band at step k, k = 1..=K.
+    /// σ\[l\]\[k\]: how far link l may exceed the upper end of its band at step k, k = 1..=K.
     pub fn band_upper_slack(&self, l: usize, k: usize) -> usize {
         debug_assert!(l < self.links && k >= 1 && k <= self.k);
         self.link_base() + 2 * (l * self.k + (k - 1))
     }
-    /// ν[l][k]: how far link l may fall below the lower end of its band at step k.
+    /// ν\[l\]\[k\]: how far link l may fall below the lower end of its band at step k.
     pub fn band_lower_slack(&self, l: usize, k: usize) -> usize {
         self.band_upper_slack(l, k) + 1
     }
-    /// ν_u[k]: slack of the USV's keep-out group of segment k−1 → k, k = 1..=K (only with
+    /// ν_u\[k\]: slack of the USV's keep-out group of segment k−1 → k, k = 1..=K (only with
     /// obstacles).
     pub fn usv_slack(&self, k: usize) -> usize {
         debug_assert!(self.obstacles && k >= 1 && k <= self.k);
         self.keep_out_base() + (k - 1)
     }
-    /// ν_los[l][k]: slack of the line-of-sight rows of link l at step k, k = 1..=K (only with
+    /// ν_los\[l\]\[k\]: slack of the line-of-sight rows of link l at step k, k = 1..=K (only with
     /// obstacles and links).
     pub fn los_slack(&self, l: usize, k: usize) -> usize {
         debug_assert!(self.obstacles && l < self.links && k >= 1 && k <= self.k);
         self.keep_out_base() + self.k + l * self.k + (k - 1)
     }
-    /// P_USV[k], k = 1..=K (2 entries).
+    /// P_USV\[k\], k = 1..=K (2 entries).
     pub fn usv_p(&self, k: usize) -> usize {
         debug_assert!(k >= 1 && k <= self.k);
         2 * (k - 1)
     }
-    /// U_USV[k], k = 0..K (2 entries).
+    /// U_USV\[k\], k = 0..K (2 entries).
     pub fn usv_u(&self, k: usize) -> usize {
         debug_assert!(k < self.k);
         2 * self.k + 2 * k
@@ -73,27 +73,27 @@ impl Layout {
         debug_assert!(n < self.n);
         4 * self.k + n * Self::AUV_BLOCK * self.k
     }
-    /// P_n[k], k = 1..=K (3 entries).
+    /// P_n\[k\], k = 1..=K (3 entries).
     pub fn auv_p(&self, n: usize, k: usize) -> usize {
         debug_assert!(k >= 1 && k <= self.k);
         self.base(n) + 3 * (k - 1)
     }
-    /// V_n[k], k = 1..=K (3 entries).
+    /// V_n\[k\], k = 1..=K (3 entries).
     pub fn auv_v(&self, n: usize, k: usize) -> usize {
         debug_assert!(k >= 1 && k <= self.k);
         self.base(n) + 3 * self.k + 3 * (k - 1)
     }
-    /// U_n[k], k = 0..K (3 entries).
+    /// U_n\[k\], k = 0..K (3 entries).
     pub fn auv_u(&self, n: usize, k: usize) -> usize {
         debug_assert!(k < self.k);
         self.base(n) + 6 * self.k + 3 * k
     }
-    /// ν_f[n][k]: slack of the floor group of segment k−1 → k, k = 1..=K.
+    /// ν_f\[n\]\[k\]: slack of the floor group of segment k−1 → k, k = 1..=K.
     pub fn floor_slack(&self, n: usize, k: usize) -> usize {
         debug_assert!(k >= 1 && k <= self.k);
         self.base(n) + 9 * self.k + (k - 1)
     }
-    /// ν_h[n][k]: slack of the heading group at step k, k = 1..=K.
+    /// ν_h\[n\]\[k\]: slack of the heading group at step k, k = 1..=K.
     pub fn heading_slack(&self, n: usize, k: usize) -> usize {
         debug_assert!(k >= 1 && k <= self.k);
         self.base(n) + 10 * self.k + (k - 1)
