@@ -225,21 +225,11 @@ fn a_plan_over_an_esri_grid_declared_in_degrees_passes_its_check() {
     let dir = tempfile::tempdir().unwrap();
     let (asc, _) = degrees(dir.path());
     let out = dir.path().join("out");
-    let (code, stdout, stderr) = run(shoal()
-        .args([
-            "plan",
-            "--no-plot",
-            "--set",
-            "team.auvs=2",
-            "--set",
-            "horizon.steps=5",
-            "--set",
-            "seafloor.crs=\"EPSG:4326\"",
-            "--seafloor",
-        ])
-        .arg(&asc)
-        .arg("-o")
-        .arg(&out));
+    let (code, stdout, stderr) = plan_small(
+        &asc,
+        &out,
+        &["--no-plot", "--set", "seafloor.crs=\"EPSG:4326\""],
+    );
     assert_eq!(code, 0, "{stdout}\n{stderr}");
     assert!(!stderr.contains("warning"), "{stderr}");
     let plan = shoal::output::read_plan(&out.join("plan.json")).unwrap();

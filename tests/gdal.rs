@@ -228,18 +228,13 @@ fn assert_same_floor(label: &str, a: &Seafloor, b: &Seafloor) {
 /// Speeds for the small survey grid (as tests/geo_plan.rs plans over it).
 const SLOW: &[&str] = &["auv.max_speed=0.5", "usv.max_speed=0.3"];
 
-/// 2 AUVs, K = 5, one window over `floor`.
-fn small(floor: &Path, values: Values, extra: &[&str]) -> Scenario {
-    let mut set = vec![
-        "team.auvs=2".to_string(),
-        "horizon.steps=5".to_string(),
-        format!("seafloor.file={:?}", floor.display().to_string()),
-    ];
+/// [`common::small`] over `floor`, read with the sign convention `values`.
+fn small_with(floor: &Path, values: Values, extra: &[&str]) -> Scenario {
+    let mut set = extra.to_vec();
     if values == Values::Depth {
-        set.push("seafloor.values=\"depth\"".into());
+        set.push("seafloor.values=\"depth\"");
     }
-    set.extend(extra.iter().map(|s| s.to_string()));
-    scenario::default_with(&set).expect("valid overrides")
+    common::small(floor, &set)
 }
 
 /// Plans, checks the plan, and checks that the checker rebuilds the floor from the plan alone.
@@ -273,7 +268,7 @@ fn every_format_gives_the_geotiffs_floor_and_a_plan_over_each_passes_its_check()
         usv: [cx, cy],
         auvs: vec![[cx + 40.0, cy, -60.0], [cx, cy + 50.0, -60.0]],
     };
-    let mut plan_over_tif = small(&reference, Values::Elevation, SLOW);
+    let mut plan_over_tif = small_with(&reference, Values::Elevation, SLOW);
     plan_over_tif.initial = Some(initial.clone());
     let (tif_plan, tif_window) = plan_and_check(&plan_over_tif);
     for f in &fixtures {
@@ -297,7 +292,7 @@ fn every_format_gives_the_geotiffs_floor_and_a_plan_over_each_passes_its_check()
         );
         assert!(i.driver.is_some(), "{}", f.label);
         // a plan over it: the same mission window, the same plan, and it passes its check
-        let mut s = small(&f.path, f.values, SLOW);
+        let mut s = small_with(&f.path, f.values, SLOW);
         s.initial = Some(initial.clone());
         let (p, window) = plan_and_check(&s);
         assert_same_floor(f.label, &window, &tif_window);
@@ -337,25 +332,14 @@ fn a_geographic_netcdf_plans_like_its_geotiff_and_the_cli_checks_it() {
         assert!((x - y).abs() < 1e-6, "{x} vs {y}");
     }
     assert_eq!(a.floor.obstacle_counts(), b.floor.obstacle_counts());
-    let (p, _) = plan_and_check(&small(&nc, Values::Elevation, &[]));
+    let (p, _) = plan_and_check(&small_with(&nc, Values::Elevation, &[]));
     assert_eq!(
         (p.seafloor.format.as_str(), p.seafloor.crs.as_str()),
         ("gdal", "EPSG:4326")
     );
     // the CLI, end to end: plan, then check from the plan file
     let out = dir.path().join("out");
-    let (code, stdout, stderr) = run(shoal()
-        .args([
-            "plan",
-            "--set",
-            "team.auvs=2",
-            "--set",
-            "horizon.steps=5",
-            "--seafloor",
-        ])
-        .arg(&nc)
-        .arg("-o")
-        .arg(&out));
+    let (code, stdout, stderr) = plan_small(&nc, &out, &[]);
     assert_eq!(code, 0, "{stdout}\n{stderr}");
     assert!(!stderr.contains("warning"), "{stderr}");
     let (code, stdout, _) = run(shoal().arg("check").arg(out.join("plan.json")));

@@ -11,17 +11,6 @@ use shoal::scenario::{self, Scenario};
 use shoal::seafloor::{load, LoadOptions, SampleType, TiffCompression, TiffLayout};
 use std::path::Path;
 
-/// 2 AUVs, K = 5, one window over the grid file `floor`, plus `extra` overrides.
-fn small(floor: &Path, extra: &[&str]) -> Scenario {
-    let mut set = vec![
-        "team.auvs=2".to_string(),
-        "horizon.steps=5".to_string(),
-        format!("seafloor.file={:?}", floor.display().to_string()),
-    ];
-    set.extend(extra.iter().map(|s| s.to_string()));
-    scenario::default_with(&set).expect("valid overrides")
-}
-
 fn plan_and_check(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
     let (floor, source) = scenario_floor(s, Path::new(""))?;
     let p = plan(&PlanInput {
@@ -52,18 +41,7 @@ fn cli_plans_over_a_geographic_geotiff_and_check_passes() {
         strips(TiffCompression::Deflate),
     );
     let out = dir.path().join("out");
-    let (code, stdout, stderr) = run(shoal()
-        .args([
-            "plan",
-            "--set",
-            "team.auvs=2",
-            "--set",
-            "horizon.steps=5",
-            "--seafloor",
-        ])
-        .arg(&floor)
-        .arg("-o")
-        .arg(&out));
+    let (code, stdout, stderr) = plan_small(&floor, &out, &[]);
     assert_eq!(code, 0, "{stdout}\n{stderr}");
     assert!(!stderr.contains("warning"), "{stderr}");
     let plan_json = out.join("plan.json");

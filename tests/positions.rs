@@ -24,16 +24,6 @@ fn plan_over(s: &Scenario) -> Plan {
     .unwrap()
 }
 
-fn small(floor: &Path, extra: &[&str]) -> Scenario {
-    let mut set = vec![
-        "team.auvs=2".to_string(),
-        "horizon.steps=5".to_string(),
-        format!("seafloor.file={:?}", floor.display().to_string()),
-    ];
-    set.extend(extra.iter().map(|s| s.to_string()));
-    scenario::default_with(&set).unwrap()
-}
-
 /// Latitude/longitude of the frame point (x, y) near the origin, to first order in the
 /// distance: the equirectangular map with the WGS84 radii of curvature at the origin, an
 /// independent check of the frame's inverse. It leaves out the tangent plane's curvature term,

@@ -120,3 +120,27 @@ pub fn run(cmd: &mut Command) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stderr).into(),
     )
 }
+
+/// The small scenario the grid-file tests plan: 2 AUVs, K = 5, one window over the grid file
+/// `floor`, plus `extra` overrides (`key=value`).
+pub fn small(floor: &Path, extra: &[&str]) -> shoal::scenario::Scenario {
+    let mut set = vec![
+        "team.auvs=2".to_string(),
+        "horizon.steps=5".to_string(),
+        format!("seafloor.file={:?}", floor.display().to_string()),
+    ];
+    set.extend(extra.iter().map(|s| s.to_string()));
+    shoal::scenario::default_with(&set).expect("valid overrides")
+}
+
+/// `shoal plan --set team.auvs=2 --set horizon.steps=5 ARGS… --seafloor FLOOR -o OUT`, the
+/// small plan of [`small`] from the command line: (exit code, stdout, stderr).
+pub fn plan_small(floor: &Path, out: &Path, args: &[&str]) -> (i32, String, String) {
+    run(shoal()
+        .args(["plan", "--set", "team.auvs=2", "--set", "horizon.steps=5"])
+        .args(args)
+        .arg("--seafloor")
+        .arg(floor)
+        .arg("-o")
+        .arg(out))
+}
