@@ -162,3 +162,46 @@ fn cli_seafloor_export_round_trips_through_the_ascii_reader() {
     let made = shoal::seafloor::Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();
     assert_eq!(read.fingerprint(), made.fingerprint());
 }
+
+/// Regression: the error chain repeated the OS message ("No such file or directory (os error
+/// 2): No such file or directory (os error 2)"), since the library's messages quote their
+/// source and also name it as the source.
+#[test]
+fn regression_missing_file_error_said_its_cause_twice() {
+    let st = shoal()
+        .args(["seafloor", "info", "/nonexistent/floor.tif"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&st.stderr);
+    assert_eq!(st.status.code(), Some(2));
+    assert_eq!(err.matches("os error 2").count(), 1, "{err}");
+    assert!(err.contains("/nonexistent/floor.tif"), "{err}");
+}
+
+/// Regression: `shoal seafloor info FILE | head -1` panicked in println! once `head` had
+/// closed the pipe; it now ends quietly, as other command-line filters do.
+#[cfg(unix)]
+#[test]
+fn regression_closed_stdout_panicked() {
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("floor.asc");
+    assert!(shoal()
+        .args(["seafloor", "export", "-o"])
+        .arg(&f)
+        .output()
+        .unwrap()
+        .status
+        .success());
+    let mut child = shoal()
+        .args(["seafloor", "info"])
+        .arg(&f)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader goes away before shoal writes
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+}
