@@ -8,8 +8,10 @@
 //! scan (`seafloor info`) and the mission-window load the planner does, against the same
 //! window from the GeoTIFF. Not a test: it needs ~1 GB of disk and memory.
 
+mod large_grid;
+
 use shoal::seafloor::{
-    info, load, write_geotiff, Crs, GeoTiffOptions, Lattice, LoadOptions, Region, SampleType,
+    info, load, write_geotiff, Crs, GeoTiffOptions, LoadOptions, Region, SampleType,
     TiffCompression, TiffLayout, Values,
 };
 use std::path::Path;
@@ -17,34 +19,9 @@ use std::process::Command;
 use std::time::Instant;
 
 fn main() {
-    let n: usize = std::env::args()
-        .nth(1)
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(7200);
+    let n = large_grid::size_from_args();
     let dir = tempfile::tempdir().expect("temporary directory");
-    let z: Vec<f64> = (0..n * n)
-        .map(|k| {
-            let (i, j) = ((k % n) as f64, (k / n) as f64);
-            -3000.0 + 1500.0 * (i * 0.003).sin() * (j * 0.002).cos() - 0.1 * i
-        })
-        .collect();
-    let nodata = vec![false; n * n];
-    let geo = Lattice {
-        nx: n,
-        ny: n,
-        x0: -10.0 + 1.0 / 480.0,
-        y0: 30.0 + 1.0 / 480.0,
-        dx: 1.0 / 240.0,
-        dy: 1.0 / 240.0,
-    };
-    let utm = Lattice {
-        nx: n,
-        ny: n,
-        x0: 300_025.0,
-        y0: 4_500_025.0,
-        dx: 50.0,
-        dy: 50.0,
-    };
+    let (z, nodata, geo, utm) = large_grid::grid(n);
     let cases = [
         ("geographic", geo, Crs::Geographic { epsg: Some(4326) }),
         (
