@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 mod load;
 mod schema;
 mod template;
+mod toml_path;
 mod validate;
 
 pub use load::{default_with, from_toml_str, load, ScenarioError, EMBEDDED_DEFAULT};
