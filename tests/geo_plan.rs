@@ -8,7 +8,7 @@ use common::*;
 use shoal::check::{check_plan, load_floor};
 use shoal::planner::{plan, scenario_floor, PlanError, PlanInput};
 use shoal::scenario::{self, Scenario};
-use shoal::seafloor::{load, LoadOptions, SampleType, TiffCompression, TiffLayout};
+use shoal::seafloor::{load, LoadOptions, SampleType, TiffCompression};
 use std::path::Path;
 
 fn plan_and_check(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
@@ -90,27 +90,14 @@ fn cli_plans_over_a_geographic_geotiff_and_check_passes() {
 fn plans_over_projected_depth_and_esri_grids_pass_their_check() {
     let dir = tempfile::tempdir().unwrap();
     // a projected (UTM) grid: the frame is the grid's own coordinates, so the start is given
-    let (l, z, nd) = survey();
-    let utm = tif(
-        dir.path(),
-        "utm.tif",
-        (&l, &z, &nd),
-        &UTM,
-        SampleType::Int32,
-        TiffLayout::Tiles { size: 16 },
-    );
-    let (cx, cy) = (l.x0 + 400.0, l.y0 + 375.0);
-    let mut s = small(&utm, &["auv.max_speed=0.5", "usv.max_speed=0.3"]);
-    s.initial = Some(scenario::Initial {
-        usv: [cx, cy],
-        auvs: vec![[cx + 40.0, cy, -60.0], [cx, cy + 50.0, -60.0]],
-    });
+    let s = utm_survey_scenario(dir.path());
     let p = plan_and_check(&s).expect("plan over the UTM grid");
     assert_eq!(
         (p.seafloor.format.as_str(), p.seafloor.crs.as_str()),
         ("geotiff", "EPSG:32631")
     );
     // the same grid as positive depths in int16, and as ESRI ASCII: the same floor
+    let (l, z, nd) = survey();
     let depth: Vec<f64> = z.iter().map(|v| -v).collect();
     let d = tif(
         dir.path(),
@@ -127,7 +114,7 @@ fn plans_over_projected_depth_and_esri_grids_pass_their_check() {
     assert_eq!(pd.seafloor.fingerprint, p.seafloor.fingerprint);
     assert_eq!(pd.seafloor.values, shoal::seafloor::Values::Depth);
     let asc = dir.path().join("utm.asc");
-    load(&utm, &LoadOptions::default())
+    load(&dir.path().join("utm.tif"), &LoadOptions::default())
         .unwrap()
         .floor
         .write_esri_ascii(&asc)

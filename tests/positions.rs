@@ -9,7 +9,7 @@ use shoal::planner::{plan, scenario_floor, PlanInput};
 use shoal::positions::{rows, Georef};
 use shoal::scenario::{self, Scenario};
 use shoal::seafloor::geo::{meridional_radius, prime_vertical_radius};
-use shoal::seafloor::{SampleType, TiffCompression, TiffLayout};
+use shoal::seafloor::{SampleType, TiffCompression};
 use std::path::Path;
 
 fn plan_over(s: &Scenario) -> Plan {
@@ -170,21 +170,7 @@ fn cli_exports_positions_as_csv() {
 #[test]
 fn positions_over_a_projected_grid_are_its_easting_and_northing() {
     let dir = tempfile::tempdir().unwrap();
-    let (l, z, nd) = survey();
-    let utm = tif(
-        dir.path(),
-        "utm.tif",
-        (&l, &z, &nd),
-        &UTM,
-        SampleType::Int32,
-        TiffLayout::Tiles { size: 16 },
-    );
-    let (cx, cy) = (l.x0 + 400.0, l.y0 + 375.0);
-    let mut s = small(&utm, &["auv.max_speed=0.5", "usv.max_speed=0.3"]);
-    s.initial = Some(scenario::Initial {
-        usv: [cx, cy],
-        auvs: vec![[cx + 40.0, cy, -60.0], [cx, cy + 50.0, -60.0]],
-    });
+    let s = utm_survey_scenario(dir.path());
     let p = plan_over(&s);
     let g = Georef::of(&p.seafloor).unwrap();
     assert_eq!(

@@ -144,3 +144,25 @@ pub fn plan_small(floor: &Path, out: &Path, args: &[&str]) -> (i32, String, Stri
         .arg("-o")
         .arg(out))
 }
+
+/// The survey grid as a tiled int32 UTM GeoTIFF in `dir`, and [`small`] over it with the speeds
+/// its 20–25 m cells suit and a start near its middle (a projected grid's frame is its own
+/// coordinates, so the start must be given).
+pub fn utm_survey_scenario(dir: &Path) -> shoal::scenario::Scenario {
+    let (l, z, nd) = survey();
+    let utm = tif(
+        dir,
+        "utm.tif",
+        (&l, &z, &nd),
+        &UTM,
+        SampleType::Int32,
+        TiffLayout::Tiles { size: 16 },
+    );
+    let (cx, cy) = (l.x0 + 400.0, l.y0 + 375.0);
+    let mut s = small(&utm, &["auv.max_speed=0.5", "usv.max_speed=0.3"]);
+    s.initial = Some(shoal::scenario::Initial {
+        usv: [cx, cy],
+        auvs: vec![[cx + 40.0, cy, -60.0], [cx, cy + 50.0, -60.0]],
+    });
+    s
+}
