@@ -196,34 +196,23 @@ impl Persp<'_> {
             (g.view[3] - g.view[2]) / (g.ny - 1) as f64,
         );
         let mut cells = Vec::new();
-        for j in 0..g.ny - 1 {
-            for i in 0..g.nx - 1 {
-                let z = [
-                    g.at(i, j),
-                    g.at(i + 1, j),
-                    g.at(i + 1, j + 1),
-                    g.at(i, j + 1),
-                ];
-                if z.iter().any(|z| z.is_nan()) {
-                    continue;
-                }
-                // Each cell a little larger than its share, so anti-aliased SVG edges leave
-                // no hairline seams between neighbours.
-                let p = |di: usize, dj: usize, z: f64| {
-                    let grow = |d: usize| if d == 0 { -0.12 } else { 1.12 };
-                    let (x, y) = g.point(i as f64 + grow(di), j as f64 + grow(dj));
-                    (x, z, -y)
-                };
-                let corners = vec![p(0, 0, z[0]), p(1, 0, z[1]), p(1, 1, z[2]), p(0, 1, z[3])];
-                let mean = z.iter().sum::<f64>() / 4.0;
-                // Slope as drawn: vertical pixels per horizontal pixel.
-                let gx = (z[1] + z[2] - z[0] - z[3]) / (2.0 * cx) * scale.1 / scale.0;
-                let gy = (z[2] + z[3] - z[0] - z[1]) / (2.0 * cy) * scale.1 / scale.2;
-                let c = depth_colour(mean, range).map(|c| c * hillshade(gx, gy));
-                let (x, y) = g.point(i as f64 + 0.5, j as f64 + 0.5);
-                let depth = chart.as_coord_spec().projected_depth(&x, &mean, &-y);
-                cells.push((depth, corners, rgb(whiten(c, 0.25))));
-            }
+        for (i, j, z) in g.cells() {
+            // Each cell a little larger than its share, so anti-aliased SVG edges leave
+            // no hairline seams between neighbours.
+            let p = |di: usize, dj: usize, z: f64| {
+                let grow = |d: usize| if d == 0 { -0.12 } else { 1.12 };
+                let (x, y) = g.point(i as f64 + grow(di), j as f64 + grow(dj));
+                (x, z, -y)
+            };
+            let corners = vec![p(0, 0, z[0]), p(1, 0, z[1]), p(1, 1, z[2]), p(0, 1, z[3])];
+            let mean = z.iter().sum::<f64>() / 4.0;
+            // Slope as drawn: vertical pixels per horizontal pixel.
+            let gx = (z[1] + z[2] - z[0] - z[3]) / (2.0 * cx) * scale.1 / scale.0;
+            let gy = (z[2] + z[3] - z[0] - z[1]) / (2.0 * cy) * scale.1 / scale.2;
+            let c = depth_colour(mean, range).map(|c| c * hillshade(gx, gy));
+            let (x, y) = g.point(i as f64 + 0.5, j as f64 + 0.5);
+            let depth = chart.as_coord_spec().projected_depth(&x, &mean, &-y);
+            cells.push((depth, corners, rgb(whiten(c, 0.25))));
         }
         cells.sort_by_key(|c| std::cmp::Reverse(c.0));
         chart.draw_series(

@@ -36,6 +36,23 @@ impl Grid {
         self.z[j * self.nx + i]
     }
 
+    /// Every cell (i, j) whose four corners are on the grid, with their elevations
+    /// counter-clockwise from the south-west: (i, j), (i+1, j), (i+1, j+1), (i, j+1).
+    pub fn cells(&self) -> impl Iterator<Item = (usize, usize, [f64; 4])> + '_ {
+        (0..self.ny - 1)
+            .flat_map(move |j| (0..self.nx - 1).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let z = [
+                    self.at(i, j),
+                    self.at(i + 1, j),
+                    self.at(i + 1, j + 1),
+                    self.at(i, j + 1),
+                ];
+                (i, j, z)
+            })
+            .filter(|(_, _, z)| !z.iter().any(|v| v.is_nan()))
+    }
+
     pub fn point(&self, i: f64, j: f64) -> (f64, f64) {
         let v = self.view;
         (
@@ -216,36 +233,25 @@ type Key = (u8, usize, usize);
 /// The contour lines of `g` at `level`, as polylines of (x, y) in metres.
 pub(crate) fn contours(g: &Grid, level: f64) -> Vec<Vec<(f64, f64)>> {
     let mut segs: Vec<[Key; 2]> = Vec::new();
-    for j in 0..g.ny - 1 {
-        for i in 0..g.nx - 1 {
-            let z = [
-                g.at(i, j),
-                g.at(i + 1, j),
-                g.at(i + 1, j + 1),
-                g.at(i, j + 1),
-            ];
-            if z.iter().any(|v| v.is_nan()) {
-                continue;
-            }
-            let above = |c: usize| usize::from(z[c] >= level) << c;
-            let case = above(0) | above(1) | above(2) | above(3);
-            let (b, r, t, l) = ((0, i, j), (1, i + 1, j), (0, i, j + 1), (1, i, j));
-            let centre_above = z.iter().sum::<f64>() / 4.0 >= level;
-            let pairs: &[[Key; 2]] = match case {
-                1 | 14 => &[[l, b]],
-                2 | 13 => &[[b, r]],
-                3 | 12 => &[[l, r]],
-                4 | 11 => &[[r, t]],
-                6 | 9 => &[[b, t]],
-                7 | 8 => &[[l, t]],
-                5 if centre_above => &[[l, t], [b, r]],
-                5 => &[[l, b], [r, t]],
-                10 if centre_above => &[[l, b], [r, t]],
-                10 => &[[b, r], [l, t]],
-                _ => &[],
-            };
-            segs.extend_from_slice(pairs);
-        }
+    for (i, j, z) in g.cells() {
+        let above = |c: usize| usize::from(z[c] >= level) << c;
+        let case = above(0) | above(1) | above(2) | above(3);
+        let (b, r, t, l) = ((0, i, j), (1, i + 1, j), (0, i, j + 1), (1, i, j));
+        let centre_above = z.iter().sum::<f64>() / 4.0 >= level;
+        let pairs: &[[Key; 2]] = match case {
+            1 | 14 => &[[l, b]],
+            2 | 13 => &[[b, r]],
+            3 | 12 => &[[l, r]],
+            4 | 11 => &[[r, t]],
+            6 | 9 => &[[b, t]],
+            7 | 8 => &[[l, t]],
+            5 if centre_above => &[[l, t], [b, r]],
+            5 => &[[l, b], [r, t]],
+            10 if centre_above => &[[l, b], [r, t]],
+            10 => &[[b, r], [l, t]],
+            _ => &[],
+        };
+        segs.extend_from_slice(pairs);
     }
     let mut at: HashMap<Key, Vec<usize>> = HashMap::new();
     for (s, ends) in segs.iter().enumerate() {
