@@ -2,11 +2,10 @@
 //! independent checker.
 
 mod common;
-use common::shoal;
+use common::{plan_and_check, plan_scenario, shoal};
 
-use shoal::planner::{plan, scenario_floor, PlanError, PlanInput};
+use shoal::planner::PlanError;
 use shoal::scenario::{self, Scenario};
-use std::path::Path;
 
 /// A small scenario that still exercises every constraint family: 2 AUVs, 8 steps, 2 windows.
 fn small(seed: u64) -> Scenario {
@@ -19,29 +18,10 @@ fn small(seed: u64) -> Scenario {
     .expect("valid overrides")
 }
 
-fn plan_only(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
-    let (floor, source) = scenario_floor(s, Path::new("")).expect("floor");
-    plan(&PlanInput {
-        scenario: s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    })
-}
-
-fn plan_and_check(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
-    let (floor, _) = scenario_floor(s, Path::new("")).expect("floor");
-    let p = plan_only(s)?;
-    let report = shoal::check::check_plan(&p, &floor);
-    assert!(report.passed(), "plan fails its check:\n{}", report.table());
-    Ok(p)
-}
-
 #[test]
 fn small_plans_over_several_seeds_pass_the_independent_check() {
     for seed in [1, 2, 3] {
-        let p = plan_and_check(&small(seed)).expect("plan");
+        let (p, _) = plan_and_check(&small(seed)).expect("plan");
         assert_eq!(p.windows.len(), 2);
         // windows chain: window 1 starts where window 0's final plan ended
         let a = &p.windows[0].final_.auvs[0];
@@ -55,7 +35,7 @@ fn destination_objective_moves_the_usv_towards_the_destination() {
     let mut s = small(4);
     s.usv.objective = scenario::UsvObjective::Destination;
     s.usv.destination = [-2000.0, 500.0];
-    let p = plan_and_check(&s).expect("plan");
+    let (p, _) = plan_and_check(&s).expect("plan");
     let end = *p.windows[1].final_.usv.position.last().unwrap();
     let d0 = (2000f64).hypot(500.0);
     let d1 = (end[0] + 2000.0).hypot(end[1] - 500.0);
@@ -70,7 +50,7 @@ fn an_initial_auv_beyond_sonar_range_is_refused_naming_c1_6() {
         usv: [0.0, 0.0],
         auvs: vec![[10.0, 0.0, -40.0], [0.0, 400.0, -40.0]],
     });
-    let err = plan_only(&s).unwrap_err();
+    let err = plan_scenario(&s).map(|(p, _)| p).unwrap_err();
     let msg = err.to_string();
     assert!(matches!(err, PlanError::InvalidStart { .. }), "{msg}");
     assert!(msg.contains("AUV 1") && msg.contains("C1_6"), "{msg}");
@@ -79,7 +59,7 @@ fn an_initial_auv_beyond_sonar_range_is_refused_naming_c1_6() {
 #[test]
 fn unstable_euler_is_refused_with_the_reason() {
     let s = scenario::default_with(&["auv.discretisation=euler".into()]).unwrap();
-    let msg = plan_only(&s).unwrap_err().to_string();
+    let msg = plan_scenario(&s).map(|(p, _)| p).unwrap_err().to_string();
     assert!(msg.contains("unstable") && msg.contains("zoh"), "{msg}");
 }
 

@@ -9,8 +9,6 @@
 mod common;
 
 use common::*;
-use shoal::check::{check_plan, load_floor};
-use shoal::planner::{plan, scenario_floor, PlanInput};
 use shoal::scenario::{self, Scenario};
 use shoal::seafloor::{
     info, load, LoadOptions, SampleType, Seafloor, SeafloorError, TiffCompression, Values,
@@ -237,24 +235,6 @@ fn small_with(floor: &Path, values: Values, extra: &[&str]) -> Scenario {
     common::small(floor, &set)
 }
 
-/// Plans, checks the plan, and checks that the checker rebuilds the floor from the plan alone.
-fn plan_and_check(s: &Scenario) -> (shoal::plan::Plan, Seafloor) {
-    let (floor, source) = scenario_floor(s, Path::new("")).expect("the floor loads");
-    let p = plan(&PlanInput {
-        scenario: s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    })
-    .expect("a plan");
-    let report = check_plan(&p, &floor);
-    assert!(report.passed(), "plan fails its check:\n{}", report.table());
-    let rebuilt = load_floor(&p, None).expect("the checker loads the plan's floor");
-    assert_eq!(rebuilt.fingerprint(), floor.fingerprint());
-    (p, floor)
-}
-
 #[test]
 fn every_format_gives_the_geotiffs_floor_and_a_plan_over_each_passes_its_check() {
     let dir = tempfile::tempdir().unwrap();
@@ -270,7 +250,7 @@ fn every_format_gives_the_geotiffs_floor_and_a_plan_over_each_passes_its_check()
     };
     let mut plan_over_tif = small_with(&reference, Values::Elevation, SLOW);
     plan_over_tif.initial = Some(initial.clone());
-    let (tif_plan, tif_window) = plan_and_check(&plan_over_tif);
+    let (tif_plan, tif_window) = plan_and_check(&plan_over_tif).expect("a plan");
     for f in &fixtures {
         let got = load(&f.path, &opts(f.values)).unwrap_or_else(|e| panic!("{}: {e}", f.label));
         assert_eq!(got.format.name(), "gdal", "{}", f.label);
@@ -294,7 +274,7 @@ fn every_format_gives_the_geotiffs_floor_and_a_plan_over_each_passes_its_check()
         // a plan over it: the same mission window, the same plan, and it passes its check
         let mut s = small_with(&f.path, f.values, SLOW);
         s.initial = Some(initial.clone());
-        let (p, window) = plan_and_check(&s);
+        let (p, window) = plan_and_check(&s).expect("a plan");
         assert_same_floor(f.label, &window, &tif_window);
         assert_eq!(p.seafloor.format, "gdal");
         assert_eq!(p.seafloor.crs, f.crs);
@@ -332,7 +312,7 @@ fn a_geographic_netcdf_plans_like_its_geotiff_and_the_cli_checks_it() {
         assert!((x - y).abs() < 1e-6, "{x} vs {y}");
     }
     assert_eq!(a.floor.obstacle_counts(), b.floor.obstacle_counts());
-    let (p, _) = plan_and_check(&small_with(&nc, Values::Elevation, &[]));
+    let (p, _) = plan_and_check(&small_with(&nc, Values::Elevation, &[])).expect("a plan");
     assert_eq!(
         (p.seafloor.format.as_str(), p.seafloor.crs.as_str()),
         ("gdal", "EPSG:4326")

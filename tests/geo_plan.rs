@@ -5,28 +5,10 @@
 mod common;
 
 use common::*;
-use shoal::check::{check_plan, load_floor};
-use shoal::planner::{plan, scenario_floor, PlanError, PlanInput};
+use shoal::planner::scenario_floor;
 use shoal::scenario::{self, Scenario};
 use shoal::seafloor::{load, LoadOptions, SampleType, TiffCompression};
 use std::path::Path;
-
-fn plan_and_check(s: &Scenario) -> Result<shoal::plan::Plan, PlanError> {
-    let (floor, source) = scenario_floor(s, Path::new(""))?;
-    let p = plan(&PlanInput {
-        scenario: s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    })?;
-    let report = check_plan(&p, &floor);
-    assert!(report.passed(), "plan fails its check:\n{}", report.table());
-    // the checker rebuilds the same floor from the plan alone
-    let rebuilt = load_floor(&p, None).expect("the checker loads the plan's floor");
-    assert_eq!(rebuilt.fingerprint(), floor.fingerprint());
-    Ok(p)
-}
 
 #[test]
 fn cli_plans_over_a_geographic_geotiff_and_check_passes() {
@@ -91,7 +73,7 @@ fn plans_over_projected_depth_and_esri_grids_pass_their_check() {
     let dir = tempfile::tempdir().unwrap();
     // a projected (UTM) grid: the frame is the grid's own coordinates, so the start is given
     let s = utm_survey_scenario(dir.path());
-    let p = plan_and_check(&s).expect("plan over the UTM grid");
+    let (p, _) = plan_and_check(&s).expect("plan over the UTM grid");
     assert_eq!(
         (p.seafloor.format.as_str(), p.seafloor.crs.as_str()),
         ("geotiff", "EPSG:32631")
@@ -110,7 +92,7 @@ fn plans_over_projected_depth_and_esri_grids_pass_their_check() {
     let mut sd = s.clone();
     sd.seafloor.file = Some(d.display().to_string());
     sd.seafloor.values = shoal::seafloor::Values::Depth;
-    let pd = plan_and_check(&sd).expect("plan over the depth grid");
+    let (pd, _) = plan_and_check(&sd).expect("plan over the depth grid");
     assert_eq!(pd.seafloor.fingerprint, p.seafloor.fingerprint);
     assert_eq!(pd.seafloor.values, shoal::seafloor::Values::Depth);
     let asc = dir.path().join("utm.asc");
@@ -121,7 +103,7 @@ fn plans_over_projected_depth_and_esri_grids_pass_their_check() {
         .unwrap();
     let mut sa = s.clone();
     sa.seafloor.file = Some(asc.display().to_string());
-    let pa = plan_and_check(&sa).expect("plan over the ESRI grid");
+    let (pa, _) = plan_and_check(&sa).expect("plan over the ESRI grid");
     assert_eq!(pa.seafloor.fingerprint, p.seafloor.fingerprint);
     assert_eq!(pa.seafloor.format, "esri-ascii");
 }

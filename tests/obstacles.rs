@@ -4,10 +4,9 @@
 
 mod common;
 
-use common::{strips, tif};
-use shoal::check::check_plan;
+use common::{plan_and_check, strips, tif};
 use shoal::plan::{Plan, Stage};
-use shoal::planner::{plan, scenario_floor, PlanError, PlanInput};
+use shoal::planner::scenario_floor;
 use shoal::scenario::{self, Scenario};
 use shoal::seafloor::{Crs, SampleType, Seafloor, TiffCompression};
 use std::path::{Path, PathBuf};
@@ -41,21 +40,6 @@ fn over(floor: &Path, extra: &[&str]) -> Scenario {
     let mut set = vec![format!("seafloor.file={:?}", floor.display().to_string())];
     set.extend(extra.iter().map(|s| s.to_string()));
     scenario::default_with(&set).expect("valid overrides")
-}
-
-/// Plans `s` and checks the plan with the check library; returns the plan and its floor.
-fn plan_and_check(s: &Scenario) -> Result<(Plan, Seafloor), PlanError> {
-    let (floor, source) = scenario_floor(s, Path::new(""))?;
-    let p = plan(&PlanInput {
-        scenario: s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    })?;
-    let report = check_plan(&p, &floor);
-    assert!(report.passed(), "plan fails its check:\n{}", report.table());
-    Ok((p, floor))
 }
 
 /// Every waypoint, every 𝓛_r sample of every segment (USV and AUVs, both stages) and every

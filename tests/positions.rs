@@ -4,25 +4,10 @@
 mod common;
 
 use common::*;
-use shoal::plan::Plan;
-use shoal::planner::{plan, scenario_floor, PlanInput};
 use shoal::positions::{rows, Georef};
-use shoal::scenario::{self, Scenario};
+use shoal::scenario;
 use shoal::seafloor::geo::{meridional_radius, prime_vertical_radius};
 use shoal::seafloor::{SampleType, TiffCompression};
-use std::path::Path;
-
-fn plan_over(s: &Scenario) -> Plan {
-    let (floor, source) = scenario_floor(s, Path::new("")).unwrap();
-    plan(&PlanInput {
-        scenario: s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    })
-    .unwrap()
-}
 
 /// Latitude/longitude of the frame point (x, y) near the origin, to first order in the
 /// distance: the equirectangular map with the WGS84 radii of curvature at the origin, an
@@ -55,7 +40,7 @@ fn positions_over_a_geographic_grid_are_given_in_latitude_and_longitude() {
             usv: [0.0, 0.0],
             auvs: vec![[60.0, 0.0, -40.0], [0.0, -80.0, -40.0]],
         });
-        let p = plan_over(&s);
+        let (p, _) = plan_scenario(&s).unwrap();
         let g = Georef::of(&p.seafloor).unwrap();
         assert_eq!(g.columns(), ["lat_deg", "lon_deg"]);
         let r = rows(&p, &g).unwrap();
@@ -171,7 +156,7 @@ fn cli_exports_positions_as_csv() {
 fn positions_over_a_projected_grid_are_its_easting_and_northing() {
     let dir = tempfile::tempdir().unwrap();
     let s = utm_survey_scenario(dir.path());
-    let p = plan_over(&s);
+    let (p, _) = plan_scenario(&s).unwrap();
     let g = Georef::of(&p.seafloor).unwrap();
     assert_eq!(
         g,

@@ -166,3 +166,31 @@ pub fn utm_survey_scenario(dir: &Path) -> shoal::scenario::Scenario {
     });
     s
 }
+
+/// Plans `s` over its scenario floor as `shoal plan` does; returns the plan and the floor.
+pub fn plan_scenario(
+    s: &shoal::scenario::Scenario,
+) -> Result<(shoal::plan::Plan, Seafloor), shoal::planner::PlanError> {
+    let (floor, source) = shoal::planner::scenario_floor(s, Path::new(""))?;
+    let p = shoal::planner::plan(&shoal::planner::PlanInput {
+        scenario: s,
+        floor: &floor,
+        scenario_source: "test".into(),
+        overrides: vec![],
+        seafloor_source: source,
+    })?;
+    Ok((p, floor))
+}
+
+/// [`plan_scenario`], then the independent checker must pass the plan, and must rebuild the
+/// same floor from the plan alone.
+pub fn plan_and_check(
+    s: &shoal::scenario::Scenario,
+) -> Result<(shoal::plan::Plan, Seafloor), shoal::planner::PlanError> {
+    let (p, floor) = plan_scenario(s)?;
+    let report = shoal::check::check_plan(&p, &floor);
+    assert!(report.passed(), "plan fails its check:\n{}", report.table());
+    let rebuilt = shoal::check::load_floor(&p, None).expect("the checker loads the plan's floor");
+    assert_eq!(rebuilt.fingerprint(), floor.fingerprint());
+    Ok((p, floor))
+}
