@@ -16,14 +16,14 @@
 //! - **Values**: raw × scale + offset when the band has them (NetCDF's scale_factor and
 //!   add_offset); a raw value equal to the NODATA value (compared in float32 for a float32
 //!   band, as GDAL does) or NaN is NODATA. A data value must be an elevation within
-//!   ±[`MAX_ABS_ELEVATION`] metres.
+//!   ±[`MAX_ABS_ELEVATION`](super::MAX_ABS_ELEVATION) metres.
 //!
 //! GDAL's own messages are not printed: its errors come back in [`SeafloorError::Gdal`], and
 //! its warnings while opening the file become the grid's warnings.
 
 use super::geokeys::check_lattice;
 use super::load::{Crs, Lattice, NodeWindow, MAX_LOAD_NODES};
-use super::{SeafloorError, MAX_ABS_ELEVATION};
+use super::SeafloorError;
 use gdal::errors::{CplErrType, GdalError};
 use gdal::raster::GdalDataType;
 use gdal::{Dataset, DatasetOptions, GdalOpenFlags, Metadata};
@@ -306,7 +306,7 @@ impl GdalGrid {
 
     /// A data value must be a finite elevation within ±MAX_ABS_ELEVATION.
     fn checked(&self, v: f64, row: usize, col: usize) -> Result<f64, SeafloorError> {
-        if v.is_finite() && v.abs() <= MAX_ABS_ELEVATION {
+        if let Ok(v) = super::raster_elevation(v, row, col, "") {
             return Ok(v);
         }
         let hint = match self.nodata.first() {
@@ -317,12 +317,7 @@ impl GdalGrid {
                 .to_string(),
             None => "band 1 has no NODATA value".to_string(),
         };
-        Err(self.fail(format!(
-            "row {}, column {} (from the top-left): value {v}: expected an elevation in metres \
-             within ±{MAX_ABS_ELEVATION} or NODATA ({hint})",
-            row + 1,
-            col + 1
-        )))
+        super::raster_elevation(v, row, col, &hint).map_err(|m| self.fail(m))
     }
 }
 

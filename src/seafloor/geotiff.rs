@@ -19,7 +19,7 @@
 
 use super::geokeys::{check_lattice, georeference, key, GeoKeys};
 use super::load::{Crs, Lattice, NodeWindow};
-use super::{SeafloorError, MAX_ABS_ELEVATION};
+use super::SeafloorError;
 use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
@@ -330,19 +330,11 @@ impl TiffGrid {
 
     /// A data value must be a finite elevation within ±MAX_ABS_ELEVATION.
     fn checked(&self, v: f64, row: usize, col: usize) -> Result<f64, SeafloorError> {
-        if v.is_finite() && v.abs() <= MAX_ABS_ELEVATION {
-            return Ok(v);
-        }
-        let hint = match self.nodata {
+        let hint = || match self.nodata {
             Some(nd) => format!("GDAL_NODATA is {nd}"),
             None => "the file has no GDAL_NODATA tag".to_string(),
         };
-        Err(self.fail(format!(
-            "row {}, column {} (from the top-left): value {v}: expected an elevation in metres \
-             within ±{MAX_ABS_ELEVATION} or NODATA ({hint})",
-            row + 1,
-            col + 1
-        )))
+        super::raster_elevation(v, row, col, &hint()).map_err(|m| self.fail(m))
     }
 }
 

@@ -76,6 +76,26 @@ pub const MAX_NODES_PER_AXIS: usize = 50_000;
 /// to files (-99999) apart from any data value.
 pub const MAX_ABS_ELEVATION: f64 = 50_000.0;
 
+/// A raster sample as a data elevation: `v` when finite and within ±[`MAX_ABS_ELEVATION`], else
+/// the message that locates it (row and column from the top-left, 0-based in) and says what the
+/// file's NODATA marker is (`nodata_hint`).
+pub(crate) fn raster_elevation(
+    v: f64,
+    row: usize,
+    col: usize,
+    nodata_hint: &str,
+) -> Result<f64, String> {
+    if v.is_finite() && v.abs() <= MAX_ABS_ELEVATION {
+        return Ok(v);
+    }
+    Err(format!(
+        "row {}, column {} (from the top-left): value {v}: expected an elevation in metres \
+         within ±{MAX_ABS_ELEVATION} or NODATA ({nodata_hint})",
+        row + 1,
+        col + 1
+    ))
+}
+
 /// Largest number of samples [`Seafloor::segment_clearance`] will take on one segment.
 pub const MAX_SEGMENT_SAMPLES: usize = 10_000_000;
 

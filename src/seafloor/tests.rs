@@ -389,3 +389,20 @@ fn fingerprint_sees_every_bit() {
     .unwrap();
     assert_ne!(shifted.fingerprint(), fp);
 }
+
+#[test]
+fn raster_samples_outside_the_elevation_bound_name_their_place_and_the_nodata_marker() {
+    assert_eq!(super::raster_elevation(-100.0, 0, 0, "x"), Ok(-100.0));
+    assert_eq!(
+        super::raster_elevation(-MAX_ABS_ELEVATION, 0, 0, "x"),
+        Ok(-MAX_ABS_ELEVATION)
+    );
+    let e = super::raster_elevation(-99999.0, 2, 4, "GDAL_NODATA is -9999").unwrap_err();
+    assert_eq!(
+        e,
+        "row 3, column 5 (from the top-left): value -99999: expected an elevation in metres \
+         within ±50000 or NODATA (GDAL_NODATA is -9999)"
+    );
+    assert!(super::raster_elevation(f64::NAN, 0, 0, "x").is_err());
+    assert!(super::raster_elevation(f64::INFINITY, 0, 0, "x").is_err());
+}
