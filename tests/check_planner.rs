@@ -107,17 +107,20 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
         .map(|j| -(w.w2 / (2.0 * w.w1)) * (j + 1..=kk).map(|k| gain(k - j - 1)).sum::<f64>())
         .collect();
     let step1 = &p.windows[0].step1;
+    // The tolerance is the interior-point solver's accuracy on this nearly flat objective (an
+    // input changes J by w1·u², 1e-7 for an error of 1e-5): U_z within 1e-3 relative (2.8e-4
+    // seen since C1_14's speed cones, 1.4e-4 before), U_x and U_y within 1e-4 absolute (2e-5
+    // seen), at Clarabel's duality-gap tolerances of 1e-8 and 1e-6 alike.
     for (a, auv) in step1.auvs.iter().enumerate() {
         for (j, u) in auv.input.iter().enumerate() {
-            let tol = 1e-7 + 1e-4 * expected[j].abs();
+            let tol = 1e-7 + 1e-3 * expected[j].abs();
             assert!(
                 (u[2] - expected[j]).abs() <= tol,
                 "AUV {a}, U_z[{j}] = {}, closed form {}",
                 u[2],
                 expected[j]
             );
-            // nothing drives horizontal motion; what is left is the interior-point solver's
-            // accuracy on a nearly flat objective (1e-5 seen, against U_z of 1e-2)
+            // nothing drives horizontal motion; what is left is the solver's accuracy
             assert!(
                 u[0].abs() <= 1e-4 && u[1].abs() <= 1e-4,
                 "AUV {a}, U[{j}] = {u:?}"
@@ -220,6 +223,11 @@ fn paper_experiment_seven_auvs_two_windows() {
 /// Regression: with one price for a metre above and below a band, Step 3 traded range for
 /// spread and with 15 AUVs (seed 1) broke the acoustic chain at step 14; the planner refused
 /// its own plan. Links above their band now cost 100 times more (`ABOVE_FACTOR`).
+///
+/// Regression too: Step 3 with 15 AUVs then ran into its 50-iteration limit (seeds 1–4) and
+/// kept only 33 % of the planned chain at N = 20, stalled on reversals of AUVs at 0.1006 m/s
+/// that its heading violation, zero below v_min and 2.4 rad just above, could not price
+/// (`team::heading`). It now converges with every planned link in its band.
 #[test]
 fn regression_fifteen_auvs_keep_their_chain() {
     let mut s = Scenario::default();
@@ -230,4 +238,6 @@ fn regression_fifteen_auvs_keep_their_chain() {
     assert!(r.passed(), "\n{}", r.table());
     assert!(!p.windows[0].graph.exact, "N = 15 uses the P4 heuristic");
     assert_eq!(p.metrics.connected_fraction, 1.0);
+    assert_eq!(p.windows[0].final_.status, "converged");
+    assert!(p.windows[0].links.out_of_band.is_empty());
 }

@@ -8,8 +8,10 @@
 //!   samples, over the keep-out field), the USV's linearised keep-out rows (over a grid with
 //!   obstacles), linearised heading rate C1_14, slacks ν ≥ 0;
 //! - second-order cones: USV speed, AUV speed C1_7, AUV–USV range C1_5 (k < K) and C1_6 (k = K),
-//!   trust region on AUV horizontal positions (and on the USV's over a grid with obstacles).
+//!   trust region on AUV horizontal positions (and on the USV's over a grid with obstacles),
+//!   C1_14's "slow" alternatives (`heading`).
 
+use super::heading::Piece;
 use super::TeamProblem;
 use crate::conic::Triplets;
 use crate::linearise::{floor_sample, segment_intervals, usv_away};
@@ -214,7 +216,8 @@ impl TeamProblem<'_> {
         self.floor_rows(r, &mut m)?;
         self.usv_rows(r, &mut m)?; // over a grid with obstacles
         self.los_rows(r, &mut m)?; // Step 3 over a grid with obstacles
-        self.heading_rows(r, &mut m);
+        let pieces = self.heading_pieces(r);
+        self.heading_rows(r, &pieces, &mut m);
         self.p5_rows(r, &mut m); // Step 3 only
         for n in 0..nn {
             for k in 1..=kk {
@@ -294,6 +297,7 @@ impl TeamProblem<'_> {
                 m.cones.push(SecondOrderConeT(3));
             }
         }
+        self.heading_cones(&pieces, &mut m);
         self.p5_cones(&mut m); // Step 3 only
         Ok(m)
     }
@@ -359,34 +363,81 @@ impl TeamProblem<'_> {
         Ok(())
     }
 
-    /// C1_14 linearised (see `linearise::Heading`): two rows per AUV and step sharing ν_h[n][k].
-    /// At k = 1 the previous velocity is the window's fixed start, so the rows are exact.
-    fn heading_rows(&self, r: &Trajectory, m: &mut Assembly) {
+    /// The alternative of C1_14 the model keeps for each AUV n and step k = 1..=K (index
+    /// k − 1), about the reference `r` (see `heading`).
+    fn heading_pieces(&self, r: &Trajectory) -> Vec<Vec<Piece>> {
+        (0..self.layout.n)
+            .map(|n| {
+                (1..=self.layout.k)
+                    .map(|k| {
+                        let (a, b) = (h2(r.auv_v[n][k - 1]), h2(r.auv_v[n][k]));
+                        self.heading.piece(a, b, k == 1)
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// C1_14's Turn piece where the model keeps it (see `heading`): per AUV and step two rows
+    /// on V_h[k−1] and two on V_h[k], all sharing ν_h[n][k] (padding rows elsewhere, so the
+    /// pattern is fixed).
+    fn heading_rows(&self, r: &Trajectory, pieces: &[Vec<Piece>], m: &mut Assembly) {
         let l = self.layout;
-        let vmin = self.scenario.auv.min_heading_speed;
         for n in 0..l.n {
             for k in 1..=l.k {
                 let a = h2(r.auv_v[n][k - 1]);
                 let b = h2(r.auv_v[n][k]);
-                let active = a[0].hypot(a[1]) >= vmin;
-                for sign in [1.0, -1.0] {
-                    let (da, db) = if active {
-                        let (_, da, db) = self.heading_model.linearise(sign, a, b);
-                        (da, db)
-                    } else {
-                        ([0.0; 2], [0.0; 2])
-                    };
-                    let row = m.row(if active { 0.0 } else { INACTIVE });
-                    if k > 1 {
-                        for i in 0..2 {
-                            m.a.push(row, l.auv_v(n, k - 1) + i, da[i]);
-                        }
-                    }
+                let (rows_a, rows_b) = if pieces[n][k - 1] == Piece::Turn {
+                    let (ra, rb) = self.heading.turn_rows(a, b, k == 1);
+                    (ra, Some(rb))
+                } else {
+                    (None, None)
+                };
+                for (rows, kv) in [(rows_a, k - 1), (rows_b, k)] {
                     for i in 0..2 {
-                        m.a.push(row, l.auv_v(n, k) + i, db[i]);
+                        let c = rows.map_or([0.0; 2], |r| r[i]);
+                        let row = m.row(if rows.is_some() { 0.0 } else { INACTIVE });
+                        if kv >= 1 {
+                            for (j, cj) in c.iter().enumerate() {
+                                m.a.push(row, l.auv_v(n, kv) + j, *cj);
+                            }
+                        }
+                        m.a.push(row, l.heading_slack(n, k), -1.0);
                     }
-                    m.a.push(row, l.heading_slack(n, k), -1.0);
                 }
+            }
+        }
+    }
+
+    /// C1_14's "slow" alternatives: per AUV and step k = 1..=K the cone
+    /// ‖V_h,n[k]‖ ≤ v_min·(1 − SLOW_MARGIN) + ν_h[n][k] + ν_h[n][k+1], where the slack of pair k
+    /// enters when it keeps `SlowAfter` and that of pair k + 1 when it keeps `SlowBefore`; a
+    /// speed bound no AUV reaches (2·V_max) where neither does.
+    fn heading_cones(&self, pieces: &[Vec<Piece>], m: &mut Assembly) {
+        let l = self.layout;
+        let loose = 2.0 * self.scenario.auv.max_speed;
+        for n in 0..l.n {
+            for k in 1..=l.k {
+                let after = pieces[n][k - 1] == Piece::SlowAfter;
+                let before = k < l.k && pieces[n][k] == Piece::SlowBefore;
+                let row = m.row(if after || before {
+                    self.heading.slow_bound()
+                } else {
+                    loose
+                });
+                m.a.push(row, l.heading_slack(n, k), if after { -1.0 } else { 0.0 });
+                if k < l.k {
+                    m.a.push(
+                        row,
+                        l.heading_slack(n, k + 1),
+                        if before { -1.0 } else { 0.0 },
+                    );
+                }
+                for i in 0..2 {
+                    let row = m.row(0.0);
+                    m.a.push(row, l.auv_v(n, k) + i, 1.0);
+                }
+                m.cones.push(SecondOrderConeT(3));
             }
         }
     }

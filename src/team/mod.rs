@@ -19,13 +19,14 @@
 
 pub(crate) mod assemble;
 mod detour;
+mod heading;
 mod keep_out;
 mod layout;
 
 pub use layout::Layout;
 
 use crate::conic::{ConicSolution, ConicSolver, Pattern};
-use crate::linearise::{usv_away, Heading};
+use crate::linearise::usv_away;
 use crate::planner::PlanError;
 use crate::scenario::{DepthObjective, Scenario, UsvObjective};
 use crate::scp::{self, Evaluation, ScpOutcome, ScpProblem};
@@ -35,6 +36,7 @@ use crate::trajectory::{Start, Trajectory};
 use crate::vehicle::{AuvModel, UsvModel};
 use assemble::h2;
 use clarabel::solver::SolverStatus;
+use heading::HeadingRule;
 
 /// Turn (rad per step) the convex model keeps below ψ̇_max·δ (constraint tightening).
 const HEADING_MARGIN: f64 = 0.005;
@@ -52,9 +54,8 @@ pub struct TeamProblem<'a> {
     usv: UsvModel,
     start: Start,
     pub(crate) layout: Layout,
-    heading: Heading,
-    /// The heading cone of the convex model, tightened by `HEADING_MARGIN`.
-    heading_model: Heading,
+    /// C1_14, with the model's cone tightened by `HEADING_MARGIN`.
+    heading: HeadingRule,
     /// P5's planned links and their bands (None for P2).
     pub(crate) links: Option<LinkSet>,
     solver: Option<ConicSolver>,
@@ -102,10 +103,11 @@ impl<'a> TeamProblem<'a> {
             usv,
             start,
             layout,
-            heading: Heading::new(scenario.auv.max_heading_rate, scenario.horizon.dt),
-            heading_model: Heading::new(
+            heading: HeadingRule::new(
+                scenario.auv.max_heading_rate,
                 (scenario.auv.max_heading_rate - HEADING_MARGIN / scenario.horizon.dt).max(0.0),
                 scenario.horizon.dt,
+                scenario.auv.min_heading_speed,
             ),
             links: None,
             solver: None,
@@ -297,31 +299,12 @@ impl<'a> TeamProblem<'a> {
         }
     }
 
-    /// Heading violation at step k of AUV n: (g in m/s for the merit, angle excess in rad).
+    /// Heading violation at step k of AUV n: (the continuous violation v in m/s for the merit,
+    /// the turn beyond θ in rad as the checker measures it); see `heading`.
     fn heading_violation(&self, t: &Trajectory, n: usize, k: usize) -> (f64, f64) {
         let a = h2(t.auv_v[n][k - 1]);
         let b = h2(t.auv_v[n][k]);
-        if a[0].hypot(a[1]) < self.scenario.auv.min_heading_speed {
-            return (0.0, 0.0);
-        }
-        let g = self.heading.violation(a, b).max(0.0);
-        let angle = (a[0] * b[1] - a[1] * b[0])
-            .atan2(a[0] * b[0] + a[1] * b[1])
-            .abs();
-        let theta = self.heading.tan.atan();
-        let excess = if b[0].hypot(b[1]) > 0.0 {
-            (angle - theta).max(0.0)
-        } else {
-            0.0
-        };
-        (
-            g,
-            if g > 0.0 {
-                excess.max(g / a[0].hypot(a[1]).max(1e-9))
-            } else {
-                0.0
-            },
-        )
+        (self.heading.violation(a, b), self.heading.excess(a, b))
     }
 
     /// p with its horizontal position clamped into the grid.
