@@ -19,6 +19,7 @@
 
 pub(crate) mod assemble;
 mod detour;
+mod guess;
 mod heading;
 mod keep_out;
 mod layout;
@@ -40,9 +41,6 @@ use heading::HeadingRule;
 
 /// Turn (rad per step) the convex model keeps below ψ̇_max·δ (constraint tightening).
 const HEADING_MARGIN: f64 = 0.005;
-
-/// Height above ε (m) at which the first reference runs above the floor.
-const GUESS_HEIGHT: f64 = 5.0;
 
 /// P2 for one window.
 pub struct TeamProblem<'a> {
@@ -137,80 +135,6 @@ impl<'a> TeamProblem<'a> {
 
     pub fn start(&self) -> &Start {
         &self.start
-    }
-
-    /// The first reference. The USV heads out at full speed (towards the destination, slower
-    /// if it is nearer than that, or along `usv.initial_heading` / its current course), so that the concave OF1_8 has a nonzero
-    /// gradient to start from. Each AUV follows it in formation: its horizontal velocity is the
-    /// USV's from step 1 on (the ZOH model reaches a commanded velocity within one step), and it
-    /// descends towards `GUESS_HEIGHT` above the floor ahead. Starting from AUVs that coast at
-    /// rest instead, the trust region lets the team catch up with the USV only Δ metres per SCP
-    /// iteration, and a window took 50 iterations instead of about 10. Over a grid with
-    /// obstacles the USV's course goes round them (`detour`), the team still in formation.
-    pub fn initial_guess(&self, previous_heading: Option<f64>) -> Trajectory {
-        let s = self.scenario;
-        let (kk, nn) = (self.layout.k, self.layout.n);
-        let dt = s.horizon.dt;
-        let (dir, speed) = match s.usv.objective {
-            UsvObjective::Destination => {
-                // towards the destination, arriving at k = K if it is nearer than full speed goes
-                let d = [
-                    s.usv.destination[0] - self.start.usv[0],
-                    s.usv.destination[1] - self.start.usv[1],
-                ];
-                let reach = d[0].hypot(d[1]) / (kk as f64 * dt);
-                (d[1].atan2(d[0]), s.usv.max_speed.min(reach))
-            }
-            UsvObjective::Away => (
-                previous_heading.unwrap_or(s.usv.initial_heading),
-                s.usv.max_speed,
-            ),
-        };
-        let u = [speed * dir.cos(), speed * dir.sin()];
-        // at the grid's edge the guess stops (the plan may not leave the known map)
-        let toward = |p: [f64; 3], u: [f64; 2]| {
-            let q = self.inside([p[0] + u[0] * dt, p[1] + u[1] * dt, p[2]]);
-            [(q[0] - p[0]) / dt, (q[1] - p[1]) / dt]
-        };
-        let mut usv_u = Vec::with_capacity(kk);
-        let mut q = [self.start.usv[0], self.start.usv[1], 0.0];
-        for _ in 0..kk {
-            let v = toward(q, u);
-            q = [q[0] + v[0] * dt, q[1] + v[1] * dt, 0.0];
-            usv_u.push(v);
-        }
-        if self.layout.obstacles {
-            if let Some(u) = self.round_obstacles([q[0], q[1]], speed) {
-                usv_u = u;
-            }
-        }
-        let m = &self.auv;
-        let top = -s.auv.surface_clearance;
-        let height = s.auv.floor_clearance + GUESS_HEIGHT;
-        let auv_u = self
-            .start
-            .auvs
-            .iter()
-            .map(|a| {
-                let (mut p, mut v) = (a.position, a.velocity);
-                usv_u
-                    .iter()
-                    .map(|&uk| {
-                        let h = toward(p, uk);
-                        let ahead = [p[0] + h[0] * dt, p[1] + h[1] * dt, 0.0];
-                        let z = (self.keep_out_linearisation(ahead).0 + height).min(top);
-                        let target = [h[0], h[1], (z - p[2]) / dt];
-                        // deadbeat velocity: V[k+1] = vv·V[k] + vu·U[k] = target
-                        let input: [f64; 3] =
-                            std::array::from_fn(|i| (target[i] - m.vv[i] * v[i]) / m.vu[i]);
-                        (p, v) = m.step(p, v, input);
-                        input
-                    })
-                    .collect()
-            })
-            .collect::<Vec<_>>();
-        debug_assert_eq!(auv_u.len(), nn);
-        Trajectory::simulate(&self.start, usv_u, auv_u, &self.auv, &self.usv)
     }
 
     /// Unweighted objective terms (OF1_1, OF1_2, OF1_8 or OF1_8_2).
