@@ -232,15 +232,7 @@ fn windows_read_only_the_nodes_asked_for_and_plans_rebuild_them_exactly() {
             y_min: l.y0 + 260.0,
             y_max: l.y0 + 400.0,
         };
-        let cut = load(
-            &p,
-            &LoadOptions {
-                region: area,
-                ..LoadOptions::default()
-            },
-        )
-        .unwrap()
-        .floor;
+        let cut = load_region(&p, area).unwrap().floor;
         // one node beyond the area each side: i from 4 to 18, j from 9 to 17
         assert_eq!((cut.nx(), cut.ny()), (15, 9));
         assert_eq!((cut.x0(), cut.y0()), (l.x0 + 4.0 * l.dx, l.y0 + 9.0 * l.dy));
@@ -250,21 +242,7 @@ fn windows_read_only_the_nodes_asked_for_and_plans_rebuild_them_exactly() {
                 assert_eq!(cut.is_nodata(i, j), whole.is_nodata(i + 4, j + 9));
             }
         }
-        let nodes = Region::Nodes {
-            x0: cut.x0(),
-            y0: cut.y0(),
-            nx: cut.nx(),
-            ny: cut.ny(),
-        };
-        let again = load(
-            &p,
-            &LoadOptions {
-                region: nodes,
-                ..LoadOptions::default()
-            },
-        )
-        .unwrap()
-        .floor;
+        let again = load_region(&p, nodes_of(&cut)).unwrap().floor;
         assert_eq!(again.fingerprint(), cut.fingerprint());
         // a lattice the grid does not hold
         let off = Region::Nodes {
@@ -274,13 +252,7 @@ fn windows_read_only_the_nodes_asked_for_and_plans_rebuild_them_exactly() {
             ny: 4,
         };
         assert!(matches!(
-            load(
-                &p,
-                &LoadOptions {
-                    region: off,
-                    ..LoadOptions::default()
-                }
-            ),
+            load_region(&p, off),
             Err(SeafloorError::Region { .. })
         ));
         // an area beside the grid
@@ -290,15 +262,7 @@ fn windows_read_only_the_nodes_asked_for_and_plans_rebuild_them_exactly() {
             y_min: 0.0,
             y_max: 10.0,
         };
-        let msg = load(
-            &p,
-            &LoadOptions {
-                region: away,
-                ..LoadOptions::default()
-            },
-        )
-        .unwrap_err()
-        .to_string();
+        let msg = load_region(&p, away).unwrap_err().to_string();
         assert!(
             msg.contains("does not overlap the grid") && msg.contains("[initial]"),
             "{msg}"
@@ -393,32 +357,11 @@ fn geographic_grids_are_resampled_onto_the_local_tangent_plane() {
         y_min: -800.0,
         y_max: 900.0,
     };
-    let cut = load(
-        &p,
-        &LoadOptions {
-            region: area,
-            ..LoadOptions::default()
-        },
-    )
-    .unwrap()
-    .floor;
+    let cut = load_region(&p, area).unwrap().floor;
     assert!(cut.nx() < 35 && cut.ny() < 25, "{cut:?}");
     let c = cut.extent();
     assert!(c.x_min <= -1000.0 && c.x_max >= 1200.0 && c.y_min <= -800.0 && c.y_max >= 900.0);
-    let nodes = Region::Nodes {
-        x0: cut.x0(),
-        y0: cut.y0(),
-        nx: cut.nx(),
-        ny: cut.ny(),
-    };
-    let again = load(
-        &p,
-        &LoadOptions {
-            region: nodes,
-            ..LoadOptions::default()
-        },
-    )
-    .unwrap();
+    let again = load_region(&p, nodes_of(&cut)).unwrap();
     assert_eq!(again.floor.fingerprint(), cut.fingerprint());
     for j in 0..cut.ny() {
         for i in 0..cut.nx() {

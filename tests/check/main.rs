@@ -649,51 +649,34 @@ fn a_window_chain_gap_fails_the_chain_only() {
 fn a_tampered_input_fails_the_dynamics_only() {
     let floor = flat();
     let sp = spec(2);
-    let mut plan = build(&sp, &floor);
-    let st = &mut plan.windows[1].final_;
-    st.auvs[0].input[1][0] += 0.01;
-    // a careful forger also fixes the stored objective
-    st.objective = objective(&plan.scenario, &floor, &st.usv, &st.auvs);
-    let r = check_plan(&plan, &floor);
-    assert_fails_exactly(
-        &r,
-        &[
-            "C1_1 AUV dynamics (position)",
-            "C1_1 AUV dynamics (velocity)",
-        ],
-    );
-    let f = r.family("C1_1 AUV dynamics (velocity)").unwrap();
-    assert!(
-        f.where_.contains("window 1, k = 1→2, AUV 0"),
-        "{}",
-        f.where_
-    );
+    // the final plan, and Step 1's stage, which the same families check and the report names
+    for (step1, named) in [
+        (false, "window 1, k = 1→2, AUV 0"),
+        (true, "window 1, k = 1→2, step1 AUV 0"),
+    ] {
+        let mut plan = build(&sp, &floor);
+        let w = &mut plan.windows[1];
+        let st = if step1 { &mut w.step1 } else { &mut w.final_ };
+        st.auvs[0].input[1][0] += 0.01;
+        // a careful forger also fixes the stored objective
+        st.objective = objective(&plan.scenario, &floor, &st.usv, &st.auvs);
+        let r = check_plan(&plan, &floor);
+        assert_fails_exactly(
+            &r,
+            &[
+                "C1_1 AUV dynamics (position)",
+                "C1_1 AUV dynamics (velocity)",
+            ],
+        );
+        let f = r.family("C1_1 AUV dynamics (velocity)").unwrap();
+        assert!(f.where_.contains(named), "{}", f.where_);
+    }
 
     // the USV model too
     let mut plan = build(&sp, &floor);
     plan.windows[0].final_.usv.input[3][1] += 0.01;
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["eq. (9) USV dynamics"]);
-
-    // Step 1's stage is checked by the same families, and named in the report
-    let mut plan = build(&sp, &floor);
-    let st = &mut plan.windows[1].step1;
-    st.auvs[0].input[1][0] += 0.01;
-    st.objective = objective(&plan.scenario, &floor, &st.usv, &st.auvs);
-    let r = check_plan(&plan, &floor);
-    assert_fails_exactly(
-        &r,
-        &[
-            "C1_1 AUV dynamics (position)",
-            "C1_1 AUV dynamics (velocity)",
-        ],
-    );
-    let f = r.family("C1_1 AUV dynamics (velocity)").unwrap();
-    assert!(
-        f.where_.contains("window 1, k = 1→2, step1 AUV 0"),
-        "{}",
-        f.where_
-    );
 }
 
 #[test]

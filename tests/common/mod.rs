@@ -2,8 +2,8 @@
 #![allow(dead_code)]
 
 use shoal::seafloor::{
-    write_geotiff, Crs, GeoTiffOptions, Lattice, LoadOptions, SampleType, Seafloor,
-    TiffCompression, TiffLayout, Values,
+    load, write_geotiff, Crs, GeoTiffOptions, Lattice, LoadOptions, LoadedFloor, Region,
+    SampleType, Seafloor, SeafloorError, TiffCompression, TiffLayout, Values,
 };
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -65,6 +65,27 @@ pub fn strips(compression: TiffCompression) -> TiffLayout {
     TiffLayout::Strips {
         rows: 3,
         compression,
+    }
+}
+
+/// `load` of the part of `path` that `region` asks for, every other option at its default.
+pub fn load_region(path: &Path, region: Region) -> Result<LoadedFloor, SeafloorError> {
+    load(
+        path,
+        &LoadOptions {
+            region,
+            ..LoadOptions::default()
+        },
+    )
+}
+
+/// The lattice of `floor` as a region: what a plan records and `shoal check` reloads.
+pub fn nodes_of(floor: &Seafloor) -> Region {
+    Region::Nodes {
+        x0: floor.x0(),
+        y0: floor.y0(),
+        nx: floor.nx(),
+        ny: floor.ny(),
     }
 }
 
