@@ -41,7 +41,7 @@ use crate::linearise::Heading;
 pub enum Piece {
     /// No constraint: a = V\[0\] is the window's fixed start and has no heading.
     Free,
-    /// The linearised cone: b within θ of a.
+    /// The turn: a and b within θ/2 of the bisector of the reference (b within θ of a fixed a).
     Turn,
     /// ‖a‖ stays below v_min.
     SlowBefore,

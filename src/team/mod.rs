@@ -8,7 +8,7 @@
 //! - C2_2 is linearised about the previous iterate (value and gradient of Z), not frozen, and is
 //!   imposed at every sample of every segment between waypoints (the rule of 𝓛_r), not only at
 //!   the waypoints: 100 s apart, a seamount can sit between two waypoints.
-//! - C2_3/C2_4 are replaced by the linearised cone of `linearise::Heading`.
+//! - C2_3/C2_4 are replaced by C1_14 as a disjunction with convex restriction pieces (`heading`).
 //! - Obstacles (NODATA and land cells): every floor constraint (C2_2 rows, the true violation,
 //!   the first guess) uses the keep-out field of `Seafloor::keep_out`, in which every obstacle
 //!   cell lies above the surface, instead of the floor; over a grid with obstacles the USV too
