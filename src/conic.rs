@@ -5,6 +5,12 @@
 //! assembled once from triplets into CSC; each triplet remembers its slot in the CSC value array,
 //! so an update writes new values in triplet order and the solver keeps its symbolic
 //! factorisation (`update_P`/`update_A`, presolve off, structural zeros kept).
+//!
+//! Variables may be given a scale d (x = d ∘ x̃, `ConicSolver::with_scale`): the solver then sees
+//! x̃ of order one whatever the unit of x (positions of 10³ m beside inputs of 10⁻² m/s²), and
+//! returns x. Clarabel's own equilibration scales the data too, but its tolerances then hold for
+//! the equilibrated problem, and a variable 10⁵ times smaller than its neighbours was known only
+//! to about 10⁻⁴ relative (see `team::Layout::scale`).
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -52,6 +58,8 @@ impl Triplets {
 pub struct Pattern {
     pub matrix: CscMatrix<f64>,
     slot: Vec<usize>,
+    /// Factor of each triplet's value (1 until `scale_columns`/`scale_symmetric`).
+    factor: Vec<f64>,
 }
 
 impl Pattern {
@@ -78,16 +86,33 @@ impl Pattern {
         let mut pattern = Pattern {
             matrix: CscMatrix::new(m, n, colptr, rowval, vec![0.0; nnz]),
             slot,
+            factor: vec![1.0; t.len()],
         };
         pattern.matrix.nzval = pattern.values(&t.vals);
         pattern
+    }
+
+    /// Scale column j by d\[j\] (A of Ax with x = d ∘ x̃), for these triplets and every update.
+    fn scale_columns(&mut self, t: &Triplets, d: &[f64]) {
+        for (i, f) in self.factor.iter_mut().enumerate() {
+            *f = d[t.cols[i]];
+        }
+        self.matrix.nzval = self.values(&t.vals);
+    }
+
+    /// Scale entry (i, j) by d\[i\]·d\[j\] (P of xᵀPx with x = d ∘ x̃).
+    fn scale_symmetric(&mut self, t: &Triplets, d: &[f64]) {
+        for (i, f) in self.factor.iter_mut().enumerate() {
+            *f = d[t.rows[i]] * d[t.cols[i]];
+        }
+        self.matrix.nzval = self.values(&t.vals);
     }
 
     /// CSC values for triplet values given in the original triplet order.
     pub fn values(&self, vals: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; self.matrix.nzval.len()];
         for (i, v) in vals.iter().enumerate() {
-            out[self.slot[i]] += v;
+            out[self.slot[i]] += v * self.factor[i];
         }
         out
     }
@@ -143,6 +168,8 @@ pub struct ConicSolver {
     solver: DefaultSolver<f64>,
     p: Pattern,
     a: Pattern,
+    /// x = scale ∘ x̃ (all ones without `with_scale`).
+    scale: Vec<f64>,
 }
 
 impl ConicSolver {
@@ -153,9 +180,42 @@ impl ConicSolver {
         b: &[f64],
         cones: &[SupportedConeT<f64>],
     ) -> Result<ConicSolver, ConicError> {
+        let scale = vec![1.0; p.matrix.n];
         let solver = DefaultSolver::new(&p.matrix, q, &a.matrix, b, cones, settings())
             .map_err(|e| ConicError::Setup(e.to_string()))?;
-        Ok(ConicSolver { solver, p, a })
+        Ok(ConicSolver {
+            solver,
+            p,
+            a,
+            scale,
+        })
+    }
+
+    /// The same over variables scaled by `scale` (x = scale ∘ x̃; every entry positive): `p_t`
+    /// and `a_t` are the triplets the patterns were built from, in the units of x, as are later
+    /// updates; solutions are returned in the units of x.
+    #[allow(clippy::too_many_arguments)]
+    pub fn with_scale(
+        mut p: Pattern,
+        p_t: &Triplets,
+        q: &[f64],
+        mut a: Pattern,
+        a_t: &Triplets,
+        b: &[f64],
+        cones: &[SupportedConeT<f64>],
+        scale: Vec<f64>,
+    ) -> Result<ConicSolver, ConicError> {
+        p.scale_symmetric(p_t, &scale);
+        a.scale_columns(a_t, &scale);
+        let qs: Vec<f64> = q.iter().zip(&scale).map(|(v, d)| v * d).collect();
+        let solver = DefaultSolver::new(&p.matrix, &qs, &a.matrix, b, cones, settings())
+            .map_err(|e| ConicError::Setup(e.to_string()))?;
+        Ok(ConicSolver {
+            solver,
+            p,
+            a,
+            scale,
+        })
     }
 
     /// New values for P (triplet order), q, A (triplet order) and b. Patterns must not change.
@@ -168,7 +228,8 @@ impl ConicSolver {
     ) -> Result<(), ConicError> {
         let err = |e: clarabel::solver::DataUpdateError| ConicError::Update(e.to_string());
         self.solver.update_P(&self.p.values(p_vals)).map_err(err)?;
-        self.solver.update_q(&q.to_vec()).map_err(err)?;
+        let q: Vec<f64> = q.iter().zip(&self.scale).map(|(v, d)| v * d).collect();
+        self.solver.update_q(&q).map_err(err)?;
         self.solver.update_A(&self.a.values(a_vals)).map_err(err)?;
         self.solver.update_b(&b.to_vec()).map_err(err)?;
         Ok(())
@@ -207,7 +268,7 @@ impl ConicSolver {
         let s = &self.solver.solution;
         ConicSolution {
             status: s.status,
-            x: s.x.clone(),
+            x: s.x.iter().zip(&self.scale).map(|(v, d)| v * d).collect(),
             objective: s.obj_val,
             iterations: s.iterations,
             solve_time_s: s.solve_time,
@@ -259,6 +320,44 @@ mod tests {
         let tol = 100.0 * GAP_TOL;
         assert!((r.x[0] - 1.0 / n).abs() < tol && (r.x[1] - 2.0 / n).abs() < tol);
         // radius 2: the target (1, 2) is now outside still (norm √5 > 2)
+        s.update(&pt.vals, &[-2.0, -4.0], &at.vals, &[2.0, 0.0, 0.0])
+            .unwrap();
+        let r = s.solve();
+        assert!((r.x[0] - 2.0 / n).abs() < tol && (r.x[1] - 4.0 / n).abs() < tol);
+    }
+
+    /// The same projection with x measured in tens and y in tenths (x = 10·x̃, y = 0.1·ỹ): the
+    /// solver sees other numbers, the caller the same answer.
+    #[test]
+    fn scaled_variables_give_the_same_solution_in_the_callers_units() {
+        let mut pt = Triplets::default();
+        pt.push(0, 0, 2.0);
+        pt.push(1, 1, 2.0);
+        let mut at = Triplets::default();
+        at.push(1, 0, -1.0);
+        at.push(2, 1, -1.0);
+        let b = [1.0, 0.0, 0.0];
+        let mut s = ConicSolver::with_scale(
+            Pattern::new(2, 2, &pt),
+            &pt,
+            &[-2.0, -4.0],
+            Pattern::new(3, 2, &at),
+            &at,
+            &b,
+            &[SecondOrderConeT(3)],
+            vec![10.0, 0.1],
+        )
+        .unwrap();
+        let n = 5f64.sqrt();
+        let tol = 100.0 * GAP_TOL;
+        let r = s.solve();
+        assert!((r.x[0] - 1.0 / n).abs() < tol && (r.x[1] - 2.0 / n).abs() < tol);
+        // ½xᵀPx + qᵀx = ‖x‖² − 2x − 4y = 1 − 10/√5 at the projection
+        assert!(
+            (r.objective - (1.0 - 10.0 / n)).abs() < tol,
+            "{}",
+            r.objective
+        );
         s.update(&pt.vals, &[-2.0, -4.0], &at.vals, &[2.0, 0.0, 0.0])
             .unwrap();
         let r = s.solve();

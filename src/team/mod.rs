@@ -308,13 +308,20 @@ impl ScpProblem for TeamProblem<'_> {
                 s.update(&m.p.vals, &m.q, &m.a.vals, &m.b)?;
                 s
             }
-            None => self.solver.insert(ConicSolver::new(
-                Pattern::new(nvar, nvar, &m.p),
-                &m.q,
-                Pattern::new(m.b.len(), nvar, &m.a),
-                &m.b,
-                &m.cones,
-            )?),
+            None => {
+                // positions in units of d_s (see `Layout::scale`)
+                let scale = self.layout.scale(self.scenario.acoustic.sonar_range);
+                self.solver.insert(ConicSolver::with_scale(
+                    Pattern::new(nvar, nvar, &m.p),
+                    &m.p,
+                    &m.q,
+                    Pattern::new(m.b.len(), nvar, &m.a),
+                    &m.a,
+                    &m.b,
+                    &m.cones,
+                    scale,
+                )?)
+            }
         };
         let sol = solver.solve();
         if matches!(
