@@ -294,63 +294,28 @@ mod tests {
         assert_eq!(p.values(&[1.0, 1.0, 1.0]), vec![2.0, 1.0]);
     }
 
-    /// min (x−1)² + (y−2)² s.t. ‖(x, y)‖ ≤ 1: the projection of (1, 2) onto the unit disc.
-    #[test]
-    fn socp_projection_matches_closed_form_and_survives_an_update() {
+    /// min (x−1)² + (y−2)² s.t. ‖(x, y)‖ ≤ r: the projection of (1, 2) onto the disc of radius
+    /// r, (1, 2)·r/√5, for r = 1 and, after a data update, r = 2; solved with the variables
+    /// scaled by `scale` when given.
+    fn projection_survives_an_update(scale: Option<Vec<f64>>) {
         let mut pt = Triplets::default();
         pt.push(0, 0, 2.0);
         pt.push(1, 1, 2.0);
         let mut at = Triplets::default();
         at.push(1, 0, -1.0);
         at.push(2, 1, -1.0);
-        let b = [1.0, 0.0, 0.0];
-        let cones = [SecondOrderConeT(3)];
-        let mut s = ConicSolver::new(
-            Pattern::new(2, 2, &pt),
-            &[-2.0, -4.0],
-            Pattern::new(3, 2, &at),
-            &b,
-            &cones,
-        )
+        let (q, b, cones) = ([-2.0, -4.0], [1.0, 0.0, 0.0], [SecondOrderConeT(3)]);
+        let (p, a) = (Pattern::new(2, 2, &pt), Pattern::new(3, 2, &at));
+        let mut s = match scale {
+            None => ConicSolver::new(p, &q, a, &b, &cones),
+            Some(d) => ConicSolver::with_scale(p, &pt, &q, a, &at, &b, &cones, d),
+        }
         .unwrap();
-        let r = s.solve();
-        assert!(r.usable());
         let n = 5f64.sqrt();
         // at a duality-gap tolerance of GAP_TOL, x is good to about 10·GAP_TOL (7e-6 seen)
         let tol = 100.0 * GAP_TOL;
-        assert!((r.x[0] - 1.0 / n).abs() < tol && (r.x[1] - 2.0 / n).abs() < tol);
-        // radius 2: the target (1, 2) is now outside still (norm √5 > 2)
-        s.update(&pt.vals, &[-2.0, -4.0], &at.vals, &[2.0, 0.0, 0.0])
-            .unwrap();
         let r = s.solve();
-        assert!((r.x[0] - 2.0 / n).abs() < tol && (r.x[1] - 4.0 / n).abs() < tol);
-    }
-
-    /// The same projection with x measured in tens and y in tenths (x = 10·x̃, y = 0.1·ỹ): the
-    /// solver sees other numbers, the caller the same answer.
-    #[test]
-    fn scaled_variables_give_the_same_solution_in_the_callers_units() {
-        let mut pt = Triplets::default();
-        pt.push(0, 0, 2.0);
-        pt.push(1, 1, 2.0);
-        let mut at = Triplets::default();
-        at.push(1, 0, -1.0);
-        at.push(2, 1, -1.0);
-        let b = [1.0, 0.0, 0.0];
-        let mut s = ConicSolver::with_scale(
-            Pattern::new(2, 2, &pt),
-            &pt,
-            &[-2.0, -4.0],
-            Pattern::new(3, 2, &at),
-            &at,
-            &b,
-            &[SecondOrderConeT(3)],
-            vec![10.0, 0.1],
-        )
-        .unwrap();
-        let n = 5f64.sqrt();
-        let tol = 100.0 * GAP_TOL;
-        let r = s.solve();
+        assert!(r.usable());
         assert!((r.x[0] - 1.0 / n).abs() < tol && (r.x[1] - 2.0 / n).abs() < tol);
         // ½xᵀPx + qᵀx = ‖x‖² − 2x − 4y = 1 − 10/√5 at the projection
         assert!(
@@ -358,10 +323,22 @@ mod tests {
             "{}",
             r.objective
         );
-        s.update(&pt.vals, &[-2.0, -4.0], &at.vals, &[2.0, 0.0, 0.0])
-            .unwrap();
+        // radius 2: the target (1, 2) is still outside (norm √5 > 2)
+        s.update(&pt.vals, &q, &at.vals, &[2.0, 0.0, 0.0]).unwrap();
         let r = s.solve();
         assert!((r.x[0] - 2.0 / n).abs() < tol && (r.x[1] - 4.0 / n).abs() < tol);
+    }
+
+    #[test]
+    fn socp_projection_matches_closed_form_and_survives_an_update() {
+        projection_survives_an_update(None);
+    }
+
+    /// x measured in tens and y in tenths (x = 10·x̃, y = 0.1·ỹ): the solver sees other
+    /// numbers, the caller the same answer and objective.
+    #[test]
+    fn scaled_variables_give_the_same_solution_in_the_callers_units() {
+        projection_survives_an_update(Some(vec![10.0, 0.1]));
     }
 
     /// x ≥ 1 (group "lower") and x ≤ 0 (group "upper") conflict; y ≤ 5 ("other") does not.
