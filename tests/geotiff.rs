@@ -377,15 +377,7 @@ fn geographic_grids_are_resampled_onto_the_local_tangent_plane() {
 #[test]
 fn info_reports_size_extent_crs_range_nodata_land_and_origin() {
     let dir = tempfile::tempdir().unwrap();
-    let (l, z, nd) = geographic();
-    let p = tif(
-        dir.path(),
-        "g.tif",
-        (&l, &z, &nd),
-        &WGS84,
-        SampleType::Float32,
-        strips(TiffCompression::None),
-    );
+    let p = geographic_tif(dir.path(), "g.tif");
     let i = info(&p, Values::Elevation).unwrap();
     assert_eq!((i.native.nx, i.native.ny), (141, 101));
     assert_eq!(

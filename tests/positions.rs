@@ -7,7 +7,6 @@ use common::*;
 use shoal::positions::{rows, Georef};
 use shoal::scenario;
 use shoal::seafloor::geo::{meridional_radius, prime_vertical_radius};
-use shoal::seafloor::{SampleType, TiffCompression};
 
 /// Latitude/longitude of the frame point (x, y) near the origin, to first order in the
 /// distance: the equirectangular map with the WGS84 radii of curvature at the origin, an
@@ -22,15 +21,7 @@ fn near_origin(lat0: f64, lon0: f64, x: f64, y: f64) -> [f64; 2] {
 #[test]
 fn positions_over_a_geographic_grid_are_given_in_latitude_and_longitude() {
     let dir = tempfile::tempdir().unwrap();
-    let (l, z, nd) = geographic();
-    let f = tif(
-        dir.path(),
-        "gebco.tif",
-        (&l, &z, &nd),
-        &WGS84,
-        SampleType::Float32,
-        strips(TiffCompression::None),
-    );
+    let f = geographic_tif(dir.path(), "gebco.tif");
     for (origin, extra) in [
         ([43.05, 5.07], vec![]),
         ([43.04, 5.06], vec!["seafloor.origin=[43.04, 5.06]"]),
@@ -74,15 +65,7 @@ fn positions_over_a_geographic_grid_are_given_in_latitude_and_longitude() {
 #[test]
 fn cli_exports_positions_as_csv() {
     let dir = tempfile::tempdir().unwrap();
-    let (l, z, nd) = geographic();
-    let f = tif(
-        dir.path(),
-        "gebco.tif",
-        (&l, &z, &nd),
-        &WGS84,
-        SampleType::Float32,
-        strips(TiffCompression::None),
-    );
+    let f = geographic_tif(dir.path(), "gebco.tif");
     let out = dir.path().join("out");
     let status = shoal()
         .args([

@@ -306,15 +306,7 @@ fn cli_exports_crops_of_files_and_of_the_scenario_floor() {
 #[test]
 fn a_scenario_floor_from_a_geographic_grid_is_cropped_by_a_latlon_box() {
     let dir = tempfile::tempdir().unwrap();
-    let (l, z, nd) = geographic();
-    let src = tif(
-        dir.path(),
-        "g.tif",
-        (&l, &z, &nd),
-        &WGS84,
-        SampleType::Float32,
-        strips(TiffCompression::None),
-    );
+    let src = geographic_tif(dir.path(), "g.tif");
     let out = dir.path().join("box.tif");
     let (code, stdout, stderr) = run(shoal()
         .args(["seafloor", "export", "--set"])

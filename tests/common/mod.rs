@@ -96,6 +96,20 @@ pub fn opts(values: Values) -> LoadOptions {
     }
 }
 
+/// The `geographic()` grid written as a float32 GeoTIFF (WGS 84, uncompressed strips) named
+/// `name` in `dir`.
+pub fn geographic_tif(dir: &Path, name: &str) -> PathBuf {
+    let (l, z, nd) = geographic();
+    tif(
+        dir,
+        name,
+        (&l, &z, &nd),
+        &WGS84,
+        SampleType::Float32,
+        strips(TiffCompression::None),
+    )
+}
+
 /// A geographic grid: 0.001° nodes around (43.05° N, 5.07° E), values linear in latitude and
 /// longitude (so bilinear interpolation is exact in degrees), a NODATA hole and an island.
 pub fn geographic() -> (Lattice, Vec<f64>, Vec<bool>) {
