@@ -149,7 +149,15 @@ pub const GAP_TOL: f64 = 1e-6;
 pub const FEAS_TOL: f64 = 1e-7;
 
 /// Solver settings used throughout: presolve off and structural zeros kept so that data updates
-/// are always allowed; tolerances [`GAP_TOL`] and [`FEAS_TOL`].
+/// are always allowed; tolerances [`GAP_TOL`] and [`FEAS_TOL`]; no iterative refinement.
+///
+/// Iterative refinement polishes each Newton direction against the unregularised KKT matrix:
+/// per interior-point iteration a residual product with the KKT matrix and one more pair of
+/// triangular solves, for each of the two right-hand sides. Clarabel judges convergence by
+/// residuals computed from the problem data, not from the factorisation, so a less exact
+/// direction can cost iterations but cannot make a wrong answer pass as `Solved`. On our models
+/// it costs none: the same iteration counts and objectives, 17–30 % less time per solve, and
+/// 29 % less planner time over the 8-seed sweep of BENCHMARKS.md with every solve `Solved`.
 pub fn settings() -> DefaultSettings<f64> {
     DefaultSettingsBuilder::default()
         .verbose(false)
@@ -159,6 +167,7 @@ pub fn settings() -> DefaultSettings<f64> {
         .tol_gap_abs(GAP_TOL)
         .tol_gap_rel(GAP_TOL)
         .tol_feas(FEAS_TOL)
+        .iterative_refinement_enable(false)
         .build()
         .expect("static Clarabel settings are valid")
 }
