@@ -13,16 +13,16 @@ export const COLORS = {
   surface: '#9fd0ff',
 };
 
-// Distinct colours for the AUVs, avoiding white, light blue and yellow (USV and links).
-const PALETTE = [
-  '#ff5a5f', '#3ddc84', '#ff9f1c', '#c77dff', '#ff6ec7', '#2ec4b6', '#f4a261', '#8ac926',
-  '#e76f51', '#9d4edd', '#06d6a0', '#ef476f', '#b5838d', '#4cc9f0', '#f72585', '#80ed99',
-  '#d4a373', '#a0c4ff', '#ffadad', '#bdb2ff',
-];
+// Lightness (HSL, sRGB) below which an AUV's colour is raised to read on the dark background.
+const MIN_LIGHTNESS = 0.6;
 
-export function auvColor(i) {
-  if (i < PALETTE.length) return PALETTE[i];
-  return `hsl(${Math.round((i * 137.508) % 360)}, 70%, 60%)`;
+// AUV i's colour: the one its figures use (`data.auv_colours`, from the planner), with its hue
+// and saturation kept and its lightness raised to at least MIN_LIGHTNESS.
+export function auvColor(data, i) {
+  const c = new THREE.Color(data.auv_colours[i] ?? '#cccccc');
+  const hsl = c.getHSL({}, THREE.SRGBColorSpace);
+  if (hsl.l < MIN_LIGHTNESS) c.setHSL(hsl.h, hsl.s, MIN_LIGHTNESS, THREE.SRGBColorSpace);
+  return `#${c.getHexString(THREE.SRGBColorSpace)}`;
 }
 
 // Depth colours, deepest first (t = 0) to shallowest (t = 1).
@@ -146,7 +146,7 @@ export class MissionScene {
   buildVehicles() {
     const d = this.data;
     const list = [{ name: 'USV', color: COLORS.usv, usv: true }];
-    for (let i = 0; i < d.auvs; i++) list.push({ name: `AUV ${i}`, color: auvColor(i), auv: i });
+    for (let i = 0; i < d.auvs; i++) list.push({ name: `AUV ${i}`, color: auvColor(d, i), auv: i });
     const segments = Math.max(this.timeline.length - 1, 1);
     const cyl = new THREE.CylinderGeometry(1, 1, 1, 10, 1, true);
     const ball = new THREE.SphereGeometry(1, 18, 12);

@@ -44,7 +44,7 @@ function legend() {
     box.append(row);
   };
   item(COLORS.usv, 'USV');
-  for (let i = 0; i < data.auvs; i++) item(auvColor(i), `AUV ${i}`);
+  for (let i = 0; i < data.auvs; i++) item(auvColor(data, i), `AUV ${i}`);
   item(COLORS.a2u, 'A2U link', 'bar');
   item(COLORS.a2a, 'A2A link', 'bar');
   const f = data.floor;

@@ -25,6 +25,9 @@ pub struct ViewerData {
     pub dt: f64,
     pub sonar_range: f64,
     pub band_tolerance: f64,
+    /// The figures' colour of every AUV (`figures::vehicle_colour_hex`), `#rrggbb`: the page
+    /// lightens them for its dark background and keeps their hues.
+    pub auv_colours: Vec<String>,
     pub floor: FloorData,
     pub windows: Vec<WindowData>,
     pub metrics: Metrics,
@@ -94,6 +97,9 @@ pub fn build(plan: &Plan, floor: &Seafloor) -> Result<ViewerData, ViewerError> {
         dt: plan.scenario.horizon.dt,
         sonar_range: plan.scenario.acoustic.sonar_range,
         band_tolerance: plan.scenario.acoustic.band_tolerance,
+        auv_colours: (0..n)
+            .map(|i| crate::figures::vehicle_colour_hex(Some(i)))
+            .collect(),
         floor: floor_mesh(floor, &plan.seafloor.source, bounds(&windows), margin),
         windows,
         metrics: plan.metrics.clone(),

@@ -1,6 +1,6 @@
 // Opens a `shoal view` HTML file from file:// in headless Chromium and checks it works:
 // no console errors, no page errors, no request leaving the file (works offline), a WebGL
-// canvas that is not blank, a time slider that changes the displayed step, and the play button.
+// canvas that is not blank, AUV colours with the figures' hues, a time slider that changes the displayed step, and the play button.
 // Saves a screenshot at the start (<shot>-start.png) and at mid-mission (<shot>).
 //
 //   node tests/viewer/check.mjs mission.html shot.png
@@ -76,6 +76,30 @@ try {
   });
   console.log(`canvas ${pixels.width}×${pixels.height}: ${pixels.colours} colours, ${(100 * pixels.drawn).toFixed(1)} % not background`);
   if (pixels.colours < 30 || pixels.drawn < 0.1) problems.push(`the canvas looks blank: ${JSON.stringify(pixels)}`);
+
+  // AUV colours: the figures' hues (data.auv_colours), lightened for the dark background.
+  const swatches = await page.evaluate(() => {
+    const data = JSON.parse(document.getElementById('plan-data').textContent);
+    const hsl = ([r, g, b]) => {
+      const [x, y, z] = [r / 255, g / 255, b / 255];
+      const max = Math.max(x, y, z), min = Math.min(x, y, z), l = (max + min) / 2, d = max - min;
+      if (d === 0) return { h: 0, s: 0, l };
+      const h = max === x ? ((y - z) / d + 6) % 6 : max === y ? (z - x) / d + 2 : (x - y) / d + 4;
+      return { h: 60 * h, s: d / (1 - Math.abs(2 * l - 1)), l };
+    };
+    const hex = (c) => [1, 3, 5].map((i) => parseInt(c.slice(i, i + 2), 16));
+    const css = (el) => getComputedStyle(el).backgroundColor.match(/\d+/g).slice(0, 3).map(Number);
+    const shown = [...document.querySelectorAll('#legend .swatch')].slice(1); // [0] is the USV
+    return data.auv_colours.map((c, i) => ({ i, figure: hsl(hex(c)), shown: shown[i] && hsl(css(shown[i])) }));
+  });
+  for (const { i, figure, shown } of swatches) {
+    const dh = shown && Math.min(Math.abs(figure.h - shown.h), 360 - Math.abs(figure.h - shown.h));
+    if (!shown) problems.push(`no legend swatch for AUV ${i}`);
+    else if ((figure.s > 0.05 && dh > 2) || shown.l < 0.58) {
+      problems.push(`AUV ${i}: legend colour ${JSON.stringify(shown)} is not the figures' hue ${figure.h.toFixed(1)}° lightened`);
+    }
+  }
+  console.log(`legend: ${swatches.length} AUV colours with the figures' hues`);
 
   const before = await page.locator('#step-label').textContent();
   const steps = await page.evaluate(() => window.shoalViewer.steps);
