@@ -6,65 +6,71 @@
 //! A window needs at least one solve of each model, so these medians are a lower bound on a
 //! window's time with Clarabel (BENCHMARKS.md, "What one convex solve costs").
 
+mod common;
+
 use criterion::{criterion_group, criterion_main, Criterion};
-use shoal::planner::{initial_state, scenario_floor};
-use shoal::scenario::Scenario;
 use shoal::scp::ScpProblem;
 use shoal::step3::LinkSet;
 use shoal::team::TeamProblem;
-use shoal::trajectory::Start;
-use shoal::vehicle::{AuvModel, UsvModel};
-use std::path::Path;
+use shoal::trajectory::Trajectory;
+
+/// Solve `problem`'s model about `reference` once (building the solver), say how big it is and
+/// how many interior-point iterations it took, then measure further solves.
+fn measure(
+    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    name: &str,
+    problem: &mut TeamProblem,
+    reference: &Trajectory,
+    radius: f64,
+    penalty: f64,
+) {
+    let (_, _, first) = problem
+        .solve_model(reference, radius, penalty)
+        .expect("model");
+    eprintln!(
+        "{name}: {} variables, {} interior-point iterations, {:?}",
+        problem.layout().variables(),
+        first.iterations,
+        first.status
+    );
+    group.bench_function(name, |b| {
+        b.iter(|| {
+            problem
+                .solve_model(reference, radius, penalty)
+                .expect("model")
+        })
+    });
+}
 
 fn model(c: &mut Criterion) {
     let mut group = c.benchmark_group("model");
     group.sample_size(10);
     for n in [5usize, 20] {
-        let mut s = Scenario::default();
-        s.team.auvs = n;
-        let (floor, _) = scenario_floor(&s, Path::new("")).expect("default floor");
-        let auv = AuvModel::new(&s.auv, s.horizon.dt).expect("model");
-        let usv = UsvModel {
-            dt: s.horizon.dt,
-            max_speed: s.usv.max_speed,
-        };
-        let keep_out = floor.keep_out();
-        let init = initial_state(&s, &floor, &keep_out).expect("initial state");
-        let start = Start {
-            usv: init.usv,
-            auvs: init.auvs,
-        };
+        let b = common::setup(n);
+        let s = &b.scenario;
         let penalty = s.scp.penalty;
+        let new_problem =
+            || TeamProblem::new(s, &b.floor, &b.keep_out, b.auv, b.usv, b.start.clone());
 
-        let mut p2 = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start.clone());
+        let mut p2 = new_problem();
         let guess = p2.initial_guess(None);
-        let radius = s.scp.trust_region;
-        let (_, _, first) = p2.solve_model(&guess, radius, penalty).expect("P2 model");
-        eprintln!(
-            "P2 model, N = {n}: {} variables, {} interior-point iterations, {:?}",
-            p2.layout().variables(),
-            first.iterations,
-            first.status
+        let name = format!("p2/N={n},K=20");
+        measure(
+            &mut group,
+            &name,
+            &mut p2,
+            &guess,
+            s.scp.trust_region,
+            penalty,
         );
-        group.bench_function(format!("p2/N={n},K=20"), |b| {
-            b.iter(|| p2.solve_model(&guess, radius, penalty).expect("P2 model"))
-        });
 
         let step1 = shoal::step1::solve(&mut p2, None).expect("P2").iterate;
-        let graph = shoal::step2::solve(&step1, &floor, s.acoustic.resolution);
+        let graph = shoal::step2::solve(&step1, &b.floor, s.acoustic.resolution);
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
-        let mut p5 = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start).with_links(links);
+        let mut p5 = new_problem().with_links(links);
         let radius = s.acoustic.band_tolerance.min(s.scp.trust_region);
-        let (_, _, first) = p5.solve_model(&step1, radius, penalty).expect("P5 model");
-        eprintln!(
-            "P5 model, N = {n}: {} variables, {} interior-point iterations, {:?}",
-            p5.layout().variables(),
-            first.iterations,
-            first.status
-        );
-        group.bench_function(format!("p5/N={n},K=20"), |b| {
-            b.iter(|| p5.solve_model(&step1, radius, penalty).expect("P5 model"))
-        });
+        let name = format!("p5/N={n},K=20");
+        measure(&mut group, &name, &mut p5, &step1, radius, penalty);
     }
     group.finish();
 }
