@@ -71,7 +71,7 @@ pub fn vehicle_colour(vehicle: Option<usize>) -> RGBColor {
     }
 }
 
-/// The same colour as `#rrggbb`, for the viewer page (`viewer::data`), which lightens it to read
+/// The same colour as `#rrggbb`, for the viewer page (`viewer::data`), which tints it to read
 /// on its dark background but keeps its hue, so AUV n looks alike in figures and viewer.
 pub fn vehicle_colour_hex(vehicle: Option<usize>) -> String {
     let RGBColor(r, g, b) = vehicle_colour(vehicle);

@@ -26,7 +26,7 @@ pub struct ViewerData {
     pub sonar_range: f64,
     pub band_tolerance: f64,
     /// The figures' colour of every AUV (`figures::vehicle_colour_hex`), `#rrggbb`: the page
-    /// lightens them for its dark background and keeps their hues.
+    /// tints them (mixes them with white) for its dark background, which keeps their hues.
     pub auv_colours: Vec<String>,
     pub floor: FloorData,
     pub windows: Vec<WindowData>,

@@ -77,7 +77,8 @@ try {
   console.log(`canvas ${pixels.width}×${pixels.height}: ${pixels.colours} colours, ${(100 * pixels.drawn).toFixed(1)} % not background`);
   if (pixels.colours < 30 || pixels.drawn < 0.1) problems.push(`the canvas looks blank: ${JSON.stringify(pixels)}`);
 
-  // AUV colours: the figures' hues (data.auv_colours), lightened for the dark background.
+  // AUV colours: the figures' hues (data.auv_colours), tinted for the dark background, and
+  // none close to a link's colour (RGB distance ≥ 60 of 255).
   const swatches = await page.evaluate(() => {
     const data = JSON.parse(document.getElementById('plan-data').textContent);
     const hsl = ([r, g, b]) => {
@@ -89,17 +90,24 @@ try {
     };
     const hex = (c) => [1, 3, 5].map((i) => parseInt(c.slice(i, i + 2), 16));
     const css = (el) => getComputedStyle(el).backgroundColor.match(/\d+/g).slice(0, 3).map(Number);
+    const links = [...document.querySelectorAll('#legend .bar')].map(css);
     const shown = [...document.querySelectorAll('#legend .swatch')].slice(1); // [0] is the USV
-    return data.auv_colours.map((c, i) => ({ i, figure: hsl(hex(c)), shown: shown[i] && hsl(css(shown[i])) }));
+    return data.auv_colours.map((c, i) => {
+      const rgb = shown[i] && css(shown[i]);
+      const near = rgb ? Math.min(...links.map((l) => Math.hypot(...l.map((v, k) => v - rgb[k])))) : 0;
+      return { i, figure: hsl(hex(c)), shown: rgb && hsl(rgb), near };
+    });
   });
-  for (const { i, figure, shown } of swatches) {
+  for (const { i, figure, shown, near } of swatches) {
     const dh = shown && Math.min(Math.abs(figure.h - shown.h), 360 - Math.abs(figure.h - shown.h));
     if (!shown) problems.push(`no legend swatch for AUV ${i}`);
-    else if ((figure.s > 0.05 && dh > 2) || shown.l < 0.58) {
+    else if ((figure.s > 0.05 && dh > 2) || shown.l < 0.55 || shown.l < figure.l) {
       problems.push(`AUV ${i}: legend colour ${JSON.stringify(shown)} is not the figures' hue ${figure.h.toFixed(1)}° lightened`);
+    } else if (near < 60) {
+      problems.push(`AUV ${i}: its colour is ${near.toFixed(0)} from a link's colour`);
     }
   }
-  console.log(`legend: ${swatches.length} AUV colours with the figures' hues`);
+  console.log(`legend: ${swatches.length} AUV colours with the figures' hues, none like a link's`);
 
   const before = await page.locator('#step-label').textContent();
   const steps = await page.evaluate(() => window.shoalViewer.steps);
