@@ -148,12 +148,12 @@ fn shoal_view_writes_one_self_contained_file() {
     }
     assert_eq!(data["windows"].as_array().unwrap().len(), 2);
     assert_eq!(data["windows"][1]["auvs"][0].as_array().unwrap().len(), 6);
-    // every AUV in its figures' colour (the page lightens it, check.mjs compares the hues)
-    let colours: Vec<String> = (0..2)
-        .map(|i| shoal::figures::vehicle_colour_hex(Some(i)))
-        .collect();
-    assert_eq!(data["auv_colours"], serde_json::json!(colours));
-    assert_eq!(colours[0], "#1f77b4");
+    // every AUV in its figures' colour, tinted (viewer::data::auv_colour; check.mjs finds them
+    // in the legend): AUV 0's #1f77b4 and AUV 1's #ff7f0e mixed 35 % with white
+    assert_eq!(
+        data["auv_colours"],
+        serde_json::json!(["#6da7ce", "#ffac62"])
+    );
     // nothing loaded from elsewhere
     for external in ["<link", " src=\"", " src='"] {
         assert!(!text.contains(external), "{external}");

@@ -13,17 +13,10 @@ export const COLORS = {
   surface: '#9fd0ff',
 };
 
-// How far an AUV's colour is mixed with white to read on the dark background: a tint, as the
-// light half of a tab20-style palette, which keeps the hue (0.35: the darkest, AUV 10's indigo,
-// reaches an HSL lightness of 0.57; lightening to a fixed HSL lightness instead turned AUV 8's
-// olive into the yellow of the A2A links).
-const TINT = 0.35;
-
-// AUV i's colour: the one its figures use (`data.auv_colours`, from the planner), tinted.
+// AUV i's colour: its figures' colour, tinted for the dark background by the planner
+// (`viewer::data::auv_colour`).
 export function auvColor(data, i) {
-  const hex = data.auv_colours[i] ?? '#808080';
-  const rgb = [1, 3, 5].map((k) => parseInt(hex.slice(k, k + 2), 16));
-  return `#${rgb.map((v) => Math.round(v + (255 - v) * TINT).toString(16).padStart(2, '0')).join('')}`;
+  return data.auv_colours[i] ?? '#aaaaaa';
 }
 
 // Depth colours, deepest first (t = 0) to shallowest (t = 1).

@@ -29,7 +29,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use thiserror::Error;
 
-pub use style::{vehicle_colour, vehicle_colour_hex, vehicle_name};
+pub use style::{vehicle_colour, vehicle_name};
 
 /// The figures [`write_all`] writes, by file stem; each as `STEM.png` and `STEM.svg`.
 pub const FIGURES: [&str; 11] = [

@@ -71,13 +71,6 @@ pub fn vehicle_colour(vehicle: Option<usize>) -> RGBColor {
     }
 }
 
-/// The same colour as `#rrggbb`, for the viewer page (`viewer::data`), which tints it to read
-/// on its dark background but keeps its hue, so AUV n looks alike in figures and viewer.
-pub fn vehicle_colour_hex(vehicle: Option<usize>) -> String {
-    let RGBColor(r, g, b) = vehicle_colour(vehicle);
-    format!("#{r:02x}{g:02x}{b:02x}")
-}
-
 /// The name of a vehicle in every figure: "USV", or "AUV n" (n from 0, as in `auvN.csv`).
 pub fn vehicle_name(vehicle: Option<usize>) -> String {
     match vehicle {

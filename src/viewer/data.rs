@@ -25,8 +25,8 @@ pub struct ViewerData {
     pub dt: f64,
     pub sonar_range: f64,
     pub band_tolerance: f64,
-    /// The figures' colour of every AUV (`figures::vehicle_colour_hex`), `#rrggbb`: the page
-    /// tints them (mixes them with white) for its dark background, which keeps their hues.
+    /// Every AUV's colour on the page, `#rrggbb`: its figures' colour (`figures::vehicle_colour`)
+    /// tinted for the dark background ([`auv_colour`]).
     pub auv_colours: Vec<String>,
     pub floor: FloorData,
     pub windows: Vec<WindowData>,
@@ -97,13 +97,24 @@ pub fn build(plan: &Plan, floor: &Seafloor) -> Result<ViewerData, ViewerError> {
         dt: plan.scenario.horizon.dt,
         sonar_range: plan.scenario.acoustic.sonar_range,
         band_tolerance: plan.scenario.acoustic.band_tolerance,
-        auv_colours: (0..n)
-            .map(|i| crate::figures::vehicle_colour_hex(Some(i)))
-            .collect(),
+        auv_colours: (0..n).map(auv_colour).collect(),
         floor: floor_mesh(floor, &plan.seafloor.source, bounds(&windows), margin),
         windows,
         metrics: plan.metrics.clone(),
     })
+}
+
+/// How far an AUV's figure colour is mixed with white for the page's dark background: a tint, as
+/// the light half of a tab20-style palette, which keeps the hue. At 0.35 the darkest (AUV 10's
+/// indigo) reaches an HSL lightness of 0.57; raising every colour to a fixed HSL lightness
+/// instead turned AUV 8's olive into the yellow of the A2A links.
+pub const TINT: f64 = 0.35;
+
+/// AUV `i`'s colour on the page: its figures' colour tinted by [`TINT`], as `#rrggbb`.
+pub fn auv_colour(i: usize) -> String {
+    let plotters::style::RGBColor(r, g, b) = crate::figures::vehicle_colour(Some(i));
+    let tint = |v: u8| (f64::from(v) + (255.0 - f64::from(v)) * TINT).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", tint(r), tint(g), tint(b))
 }
 
 fn window(w: &Window, n: usize) -> Result<WindowData, ViewerError> {

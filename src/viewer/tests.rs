@@ -1,4 +1,4 @@
-use super::data::{base64, floor_mesh, MAX_FLOOR_VERTICES};
+use super::data::{auv_colour, base64, floor_mesh, MAX_FLOOR_VERTICES};
 use super::*;
 
 #[test]
@@ -123,4 +123,63 @@ fn large_floors_are_downsampled_to_at_most_256_vertices_per_axis() {
     assert_eq!((f.nx, f.dx, f.dy), (241, 25.0, 25.0));
     assert!(f.x0 + (f.nx - 1) as f64 * f.dx <= 6000.0);
     assert_eq!((f.z_lo, f.z_hi), (-50.0, -50.0));
+}
+
+/// (hue in degrees, HSL lightness) of an sRGB colour.
+fn hue_lightness([r, g, b]: [f64; 3]) -> (f64, f64) {
+    let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+    let d = max - min;
+    let h = if d == 0.0 {
+        0.0
+    } else if max == r {
+        60.0 * ((g - b) / d).rem_euclid(6.0)
+    } else if max == g {
+        60.0 * ((b - r) / d + 2.0)
+    } else {
+        60.0 * ((r - g) / d + 4.0)
+    };
+    (h, (max + min) / 2.0)
+}
+
+fn rgb(hex: &str) -> [f64; 3] {
+    let v = |k: usize| f64::from(u8::from_str_radix(&hex[k..k + 2], 16).unwrap());
+    [v(1), v(3), v(5)]
+}
+
+/// Every AUV of the 20-colour palette: on the page, its figures' hue, lighter than in the
+/// figures and light enough for the dark background, and at least 60 (RGB, of 255) from the
+/// USV's and both link colours that scene.js draws.
+#[test]
+fn auv_colours_keep_the_figures_hues_and_stay_clear_of_the_link_colours() {
+    let page_colour = |key: &str| {
+        let at = SCENE_JS.find(&format!("{key}: '#")).expect(key) + key.len() + 3;
+        rgb(&SCENE_JS[at..at + 7])
+    };
+    let others = ["usv", "a2u", "a2a"].map(page_colour);
+    for i in 0..20 {
+        let plotters::style::RGBColor(r, g, b) = crate::figures::vehicle_colour(Some(i));
+        let figure = [r, g, b].map(|v| f64::from(v) / 255.0);
+        let shown = rgb(&auv_colour(i));
+        let (hf, lf) = hue_lightness(figure);
+        let (hs, ls) = hue_lightness(shown.map(|v| v / 255.0));
+        let dh = (hf - hs).abs().min(360.0 - (hf - hs).abs());
+        assert!(
+            dh < 1.0 || figure.iter().all(|&v| v == figure[0]),
+            "AUV {i}: hue {hf} → {hs}"
+        );
+        assert!(ls >= lf && ls >= 0.55, "AUV {i}: lightness {lf} → {ls}");
+        for (o, name) in others.iter().zip(["USV", "A2U", "A2A"]) {
+            let d = o
+                .iter()
+                .zip(&shown)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            assert!(
+                d >= 60.0,
+                "AUV {i} ({}) is {d:.0} from the {name} colour",
+                auv_colour(i)
+            );
+        }
+    }
 }

@@ -1,6 +1,6 @@
 // Opens a `shoal view` HTML file from file:// in headless Chromium and checks it works:
 // no console errors, no page errors, no request leaving the file (works offline), a WebGL
-// canvas that is not blank, AUV colours with the figures' hues, a time slider that changes the displayed step, and the play button.
+// canvas that is not blank, the plan's AUV colours in the legend, a time slider that changes the displayed step, and the play button.
 // Saves a screenshot at the start (<shot>-start.png) and at mid-mission (<shot>).
 //
 //   node tests/viewer/check.mjs mission.html shot.png
@@ -77,37 +77,26 @@ try {
   console.log(`canvas ${pixels.width}×${pixels.height}: ${pixels.colours} colours, ${(100 * pixels.drawn).toFixed(1)} % not background`);
   if (pixels.colours < 30 || pixels.drawn < 0.1) problems.push(`the canvas looks blank: ${JSON.stringify(pixels)}`);
 
-  // AUV colours: the figures' hues (data.auv_colours), tinted for the dark background, and
-  // none close to a link's colour (RGB distance ≥ 60 of 255).
+  // AUV colours: the legend shows the plan's (its figures' colours tinted by the planner, see
+  // src/viewer/tests.rs), none near a link's colour (RGB distance ≥ 60 of 255).
   const swatches = await page.evaluate(() => {
     const data = JSON.parse(document.getElementById('plan-data').textContent);
-    const hsl = ([r, g, b]) => {
-      const [x, y, z] = [r / 255, g / 255, b / 255];
-      const max = Math.max(x, y, z), min = Math.min(x, y, z), l = (max + min) / 2, d = max - min;
-      if (d === 0) return { h: 0, s: 0, l };
-      const h = max === x ? ((y - z) / d + 6) % 6 : max === y ? (z - x) / d + 2 : (x - y) / d + 4;
-      return { h: 60 * h, s: d / (1 - Math.abs(2 * l - 1)), l };
-    };
     const hex = (c) => [1, 3, 5].map((i) => parseInt(c.slice(i, i + 2), 16));
     const css = (el) => getComputedStyle(el).backgroundColor.match(/\d+/g).slice(0, 3).map(Number);
     const links = [...document.querySelectorAll('#legend .bar')].map(css);
     const shown = [...document.querySelectorAll('#legend .swatch')].slice(1); // [0] is the USV
     return data.auv_colours.map((c, i) => {
-      const rgb = shown[i] && css(shown[i]);
+      const rgb = shown[i] ? css(shown[i]) : null;
       const near = rgb ? Math.min(...links.map((l) => Math.hypot(...l.map((v, k) => v - rgb[k])))) : 0;
-      return { i, figure: hsl(hex(c)), shown: rgb && hsl(rgb), near };
+      return { i, want: hex(c), rgb, near };
     });
   });
-  for (const { i, figure, shown, near } of swatches) {
-    const dh = shown && Math.min(Math.abs(figure.h - shown.h), 360 - Math.abs(figure.h - shown.h));
-    if (!shown) problems.push(`no legend swatch for AUV ${i}`);
-    else if ((figure.s > 0.05 && dh > 2) || shown.l < 0.55 || shown.l < figure.l) {
-      problems.push(`AUV ${i}: legend colour ${JSON.stringify(shown)} is not the figures' hue ${figure.h.toFixed(1)}° lightened`);
-    } else if (near < 60) {
-      problems.push(`AUV ${i}: its colour is ${near.toFixed(0)} from a link's colour`);
-    }
+  for (const { i, want, rgb, near } of swatches) {
+    if (!rgb) problems.push(`no legend swatch for AUV ${i}`);
+    else if (rgb.join() !== want.join()) problems.push(`AUV ${i}: legend colour ${rgb}, the plan's is ${want}`);
+    else if (near < 60) problems.push(`AUV ${i}: its colour is ${near.toFixed(0)} from a link's colour`);
   }
-  console.log(`legend: ${swatches.length} AUV colours with the figures' hues, none like a link's`);
+  console.log(`legend: ${swatches.length} AUV colours as the plan gives them, none like a link's`);
 
   const before = await page.locator('#step-label').textContent();
   const steps = await page.evaluate(() => window.shoalViewer.steps);
