@@ -10,7 +10,7 @@ mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use shoal::scp::ScpProblem;
-use shoal::step3::LinkSet;
+use shoal::team::LinkSet;
 use shoal::team::TeamProblem;
 use shoal::trajectory::Trajectory;
 
@@ -64,7 +64,9 @@ fn model(c: &mut Criterion) {
             penalty,
         );
 
-        let step1 = shoal::step1::solve(&mut p2, None).expect("P2").iterate;
+        let step1 = shoal::step1::solve(&mut p2, None, &mut |_| {})
+            .expect("P2")
+            .iterate;
         let graph = shoal::step2::solve(&step1, &b.floor, s.acoustic.resolution);
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
         let mut p5 = new_problem().with_links(links);

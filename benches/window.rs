@@ -6,7 +6,7 @@
 mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use shoal::planner::{plan, PlanInput};
+
 use shoal::team::TeamProblem;
 
 fn window(c: &mut Criterion) {
@@ -19,18 +19,21 @@ fn window(c: &mut Criterion) {
             bench.iter(|| {
                 let mut p2 =
                     TeamProblem::new(s, &b.floor, &b.keep_out, b.auv, b.usv, b.start.clone());
-                shoal::step1::solve(&mut p2, None).expect("P2")
+                shoal::step1::solve(&mut p2, None, &mut |_| {}).expect("P2")
             })
         });
-        let input = PlanInput {
-            scenario: s,
-            floor: &b.floor,
+        let input = shoal::Provenance {
             scenario_source: "bench".into(),
             overrides: vec![],
-            seafloor_source: b.source.clone(),
+            seafloor: b.source.clone(),
         };
         group.bench_function(format!("steps1-3/N={n},K=20"), |bench| {
-            bench.iter(|| plan(&input).expect("plan"))
+            bench.iter(|| {
+                shoal::Planner::new(s, &b.floor)
+                    .provenance(input.clone())
+                    .run()
+                    .expect("plan")
+            })
         });
     }
     group.finish();

@@ -14,7 +14,7 @@
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
-    DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
+    DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SupportedConeT,
 };
 use thiserror::Error;
 
@@ -118,6 +118,89 @@ impl Pattern {
     }
 }
 
+/// How a convex solve ended: Clarabel's status, as shoal reports it (its `Display` is the
+/// variant's name, as the plan file's `solver_status` records it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SolverStatus {
+    /// The solver has not run.
+    Unsolved,
+    /// Solved to the requested tolerances.
+    Solved,
+    /// A certificate of primal infeasibility.
+    PrimalInfeasible,
+    /// A certificate of dual infeasibility (unbounded objective).
+    DualInfeasible,
+    /// Solved to reduced accuracy.
+    AlmostSolved,
+    /// Primal infeasible, to reduced accuracy.
+    AlmostPrimalInfeasible,
+    /// Dual infeasible, to reduced accuracy.
+    AlmostDualInfeasible,
+    /// The interior-point iteration limit.
+    MaxIterations,
+    /// The time limit.
+    MaxTime,
+    /// A numerical error.
+    NumericalError,
+    /// No progress.
+    InsufficientProgress,
+    /// Stopped by a callback.
+    CallbackTerminated,
+}
+
+impl From<clarabel::solver::SolverStatus> for SolverStatus {
+    fn from(s: clarabel::solver::SolverStatus) -> SolverStatus {
+        use clarabel::solver::SolverStatus as C;
+        match s {
+            C::Unsolved => SolverStatus::Unsolved,
+            C::Solved => SolverStatus::Solved,
+            C::PrimalInfeasible => SolverStatus::PrimalInfeasible,
+            C::DualInfeasible => SolverStatus::DualInfeasible,
+            C::AlmostSolved => SolverStatus::AlmostSolved,
+            C::AlmostPrimalInfeasible => SolverStatus::AlmostPrimalInfeasible,
+            C::AlmostDualInfeasible => SolverStatus::AlmostDualInfeasible,
+            C::MaxIterations => SolverStatus::MaxIterations,
+            C::MaxTime => SolverStatus::MaxTime,
+            C::NumericalError => SolverStatus::NumericalError,
+            C::InsufficientProgress => SolverStatus::InsufficientProgress,
+            C::CallbackTerminated => SolverStatus::CallbackTerminated,
+        }
+    }
+}
+
+impl std::fmt::Display for SolverStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{self:?}")
+    }
+}
+
+impl SolverStatus {
+    /// True for Solved and AlmostSolved (reduced accuracy, still usable by the SCP, which
+    /// re-evaluates every constraint itself).
+    pub fn usable(self) -> bool {
+        matches!(self, SolverStatus::Solved | SolverStatus::AlmostSolved)
+    }
+
+    /// True for a certificate of primal infeasibility, full or reduced accuracy.
+    pub fn infeasible(self) -> bool {
+        matches!(
+            self,
+            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible
+        )
+    }
+}
+
+/// What the SCP records of one convex solve: its status, interior-point iterations and time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveReport {
+    /// How the solve ended.
+    pub status: SolverStatus,
+    /// Interior-point iterations.
+    pub iterations: u32,
+    /// Clarabel's solve time, seconds.
+    pub solve_time_s: f64,
+}
+
 /// Outcome of one conic solve.
 #[derive(Debug, Clone)]
 pub struct ConicSolution {
@@ -132,18 +215,24 @@ impl ConicSolution {
     /// True for Solved and AlmostSolved (reduced accuracy, still usable by the SCP, which
     /// re-evaluates every constraint itself).
     pub fn usable(&self) -> bool {
-        matches!(
-            self.status,
-            SolverStatus::Solved | SolverStatus::AlmostSolved
-        )
+        self.status.usable()
+    }
+
+    /// Its status, interior-point iterations and time.
+    pub fn report(&self) -> SolveReport {
+        SolveReport {
+            status: self.status,
+            iterations: self.iterations,
+            solve_time_s: self.solve_time_s,
+        }
     }
 }
 
 /// Clarabel's duality-gap tolerances (absolute and relative) and its feasibility tolerance.
 /// Its defaults (10⁻⁸) solve each convex model far past what the SCP can use: the SCP stops at
 /// a predicted decrease of 10⁻³ relative and re-simulates the plan from the inputs, and every
-/// bound is tightened by margins of 10⁻⁶ or more (`team::assemble`). At 10⁻⁶ / 10⁻⁷ a solve
-/// takes 2–4 fewer interior-point iterations of about 29 (BENCHMARKS.md).
+/// bound is tightened by margins of 10⁻⁶ or more (`team`). BENCHMARKS.md, "Design history",
+/// has the measurements behind the choice.
 pub const GAP_TOL: f64 = 1e-6;
 /// See [`GAP_TOL`].
 pub const FEAS_TOL: f64 = 1e-7;
@@ -156,8 +245,7 @@ pub const FEAS_TOL: f64 = 1e-7;
 /// triangular solves, for each of the two right-hand sides. Clarabel judges convergence by
 /// residuals computed from the problem data, not from the factorisation, so a less exact
 /// direction can cost iterations but cannot make a wrong answer pass as `Solved`. On our models
-/// it costs none: the same iteration counts and objectives, 17–30 % less time per solve, and
-/// 29 % less planner time over the 8-seed sweep of BENCHMARKS.md with every solve `Solved`.
+/// it costs none (BENCHMARKS.md, "Design history").
 pub fn settings() -> DefaultSettings<f64> {
     DefaultSettingsBuilder::default()
         .verbose(false)
@@ -276,7 +364,7 @@ impl ConicSolver {
         self.solver.solve();
         let s = &self.solver.solution;
         ConicSolution {
-            status: s.status,
+            status: s.status.into(),
             x: s.x.iter().zip(&self.scale).map(|(v, d)| v * d).collect(),
             objective: s.obj_val,
             iterations: s.iterations,

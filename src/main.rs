@@ -2,8 +2,8 @@
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
-use shoal::planner::Progress;
 use shoal::scenario::{self, Scenario};
+use shoal::Progress;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -296,7 +296,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 None => {
                     let (s, _) = load_scenario(scenario.as_deref(), &set)?;
                     let (mut floor, source) =
-                        shoal::planner::scenario_floor(&s, base_dir(scenario.as_deref()))?;
+                        shoal::mission::scenario_floor(&s, base_dir(scenario.as_deref()))?;
                     source
                         .warnings
                         .iter()
@@ -431,43 +431,45 @@ fn plan(
     out: &Path,
     figures: bool,
 ) -> Result<ExitCode> {
-    let (floor, floor_source) = shoal::planner::scenario_floor(s, base_dir(scenario_path))?;
+    let (floor, floor_source) = shoal::mission::scenario_floor(s, base_dir(scenario_path))?;
     floor_source
         .warnings
         .iter()
         .for_each(|w| eprintln!("warning: {w}"));
-    let input = shoal::planner::PlanInput {
-        scenario: s,
-        floor: &floor,
+    let provenance = shoal::Provenance {
         scenario_source: source,
         overrides,
-        seafloor_source: floor_source,
+        seafloor: floor_source,
     };
     eprintln!(
         "planning {} window(s): N = {} AUVs, K = {} steps of δ = {} s, seed {}",
         s.windows, s.team.auvs, s.horizon.steps, s.horizon.dt, s.seed
     );
-    let plan = shoal::planner::plan_with_progress(&input, |event| match event {
-        Progress::Step1 { window, stage } => eprintln!(
-            "  window {window}: step 1 (P2) {} after {} SCP iterations in {:.3} s",
-            stage.status, stage.iterations, stage.solve_time_s
-        ),
-        Progress::Step2 { window, graph } => eprintln!(
-            "  window {window}: step 2 (P3 + P4) {} graph in {:.4} s",
-            if graph.exact { "exact" } else { "heuristic" },
-            graph.solve_time_s
-        ),
-        Progress::Step3 {
-            window,
-            stage,
-            los_rounds,
-            out_of_band,
-        } => eprintln!(
+    let plan = shoal::Planner::new(s, &floor)
+        .provenance(provenance)
+        .on_progress(|event| match event {
+            Progress::Iteration { .. } => {}
+            Progress::Step1 { window, stage } => eprintln!(
+                "  window {window}: step 1 (P2) {} after {} SCP iterations in {:.3} s",
+                stage.status, stage.iterations, stage.solve_time_s
+            ),
+            Progress::Step2 { window, graph } => eprintln!(
+                "  window {window}: step 2 (P3 + P4) {} graph in {:.4} s",
+                if graph.exact { "exact" } else { "heuristic" },
+                graph.solve_time_s
+            ),
+            Progress::Step3 {
+                window,
+                stage,
+                los_rounds,
+                out_of_band,
+            } => eprintln!(
             "  window {window}: step 3 (P5) {} after {} SCP iterations, {los_rounds} line-of-sight \
              round(s), {out_of_band} link-step(s) outside their band, in {:.3} s",
             stage.status, stage.iterations, stage.solve_time_s
         ),
-    })?;
+        })
+        .run()?;
     let plan_path = out.join("plan.json");
     shoal::output::write_plan(&plan, &plan_path)?;
     let csvs = shoal::output::write_csvs(&plan, out)?;

@@ -148,7 +148,7 @@ pub fn write_csvs(plan: &Plan, dir: &Path) -> Result<Vec<PathBuf>, OutputError> 
 /// [`write_grid`]).
 pub fn write_floor(
     floor: &crate::seafloor::Seafloor,
-    source: &crate::planner::FloorSource,
+    source: &crate::mission::FloorSource,
     out: &Path,
 ) -> Result<Vec<String>, crate::seafloor::SeafloorError> {
     use crate::seafloor::Crs;

@@ -16,14 +16,18 @@
 //! the decrease vanishes while a violation remains, λ is raised (up to 10⁴·λ₀) before the
 //! constraint is declared impossible.
 
-use crate::conic::ConicSolution;
 use crate::scenario::Scp;
 use std::time::Instant;
 
 /// What a problem solved by SCP must provide.
 pub trait ScpProblem {
+    /// A point of the problem (a trajectory, a vector).
     type Iterate: Clone;
+    /// The problem's error type.
     type Error;
+    /// What the problem reports of one convex solve (status, solver iterations, time), handed
+    /// to the observer in each [`Iteration`].
+    type Report: Clone;
     /// Solve the convex model about `reference` with trust radius `radius` and penalty
     /// `penalty`. Returns the candidate, the model merit L(candidate) and the solver's report.
     fn solve_model(
@@ -31,12 +35,33 @@ pub trait ScpProblem {
         reference: &Self::Iterate,
         radius: f64,
         penalty: f64,
-    ) -> Result<(Self::Iterate, f64, ConicSolution), Self::Error>;
+    ) -> Result<(Self::Iterate, f64, Self::Report), Self::Error>;
     /// The true objective J and the weighted sum of true violations V (so φ = J + λV), and the
     /// largest single violation (in the constraint's own unit).
     fn evaluate(&self, x: &Self::Iterate) -> Evaluation;
     /// An error for a constraint that stays violated at convergence with the largest penalty.
     fn infeasible(&self, x: &Self::Iterate) -> Self::Error;
+}
+
+/// One SCP iteration, as the loop reports it to its observer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Iteration<R> {
+    /// Trust radius Δ of this iteration.
+    pub trust_region: f64,
+    /// φ(x̄) of the reference.
+    pub merit_before: f64,
+    /// φ(x*) of the candidate.
+    pub merit_after: f64,
+    /// Predicted decrease φ(x̄) − L(x*).
+    pub predicted: f64,
+    /// ρ = actual / predicted decrease.
+    pub ratio: f64,
+    /// Whether the candidate became the reference.
+    pub accepted: bool,
+    /// The candidate's largest true violation.
+    pub violation: f64,
+    /// The problem's report of the convex solve.
+    pub solve: R,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,12 +84,14 @@ impl Evaluation {
 /// Why the SCP loop stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ScpStatus {
+    /// The predicted decrease fell below the tolerance with every constraint met.
     Converged,
     /// Iteration limit reached; the returned iterate is feasible within tolerance.
     MaxIterations,
 }
 
 impl ScpStatus {
+    /// "converged" or "max_iterations", as the plan file records it.
     pub fn as_str(&self) -> &'static str {
         match self {
             ScpStatus::Converged => "converged",
@@ -73,12 +100,18 @@ impl ScpStatus {
     }
 }
 
+/// The result of an SCP run.
 #[derive(Debug, Clone)]
 pub struct ScpOutcome<X> {
+    /// The last accepted iterate (or the best feasible one at the iteration limit).
     pub iterate: X,
+    /// Why the loop stopped.
     pub status: ScpStatus,
+    /// The iterate's objective and violations.
     pub evaluation: Evaluation,
-    pub trace: Vec<crate::plan::ScpIteration>,
+    /// SCP iterations run (each reported to the observer).
+    pub iterations: usize,
+    /// Wall-clock time of the loop, seconds.
     pub solve_time_s: f64,
 }
 
@@ -95,12 +128,14 @@ const PENALTY_MAX_FACTOR: f64 = 1e4;
 /// and reject (50 m, ρ ≪ 0, shrink), wasting every other iteration (seen with N = 10).
 const GROWTH_COOLDOWN: usize = 3;
 
-/// Run SCvx from `initial`. The first model solution is always accepted: the initial guess
-/// need not satisfy the convex constraints, so comparing merits against it means nothing.
+/// Run SCvx from `initial`, handing every iteration to `observer` as it ends. The first model
+/// solution is always accepted: the initial guess need not satisfy the convex constraints, so
+/// comparing merits against it means nothing.
 pub fn solve<P: ScpProblem>(
     problem: &mut P,
     initial: P::Iterate,
     settings: &Scp,
+    observer: &mut dyn FnMut(&Iteration<P::Report>),
 ) -> Result<ScpOutcome<P::Iterate>, P::Error>
 where
     P::Error: From<ScpFailure>,
@@ -111,7 +146,7 @@ where
     let mut radius = settings.trust_region;
     let max_radius = settings.trust_region * 64.0;
     let mut penalty = settings.penalty;
-    let mut trace = Vec::new();
+    let mut iterations = 0usize;
     let mut have_feasible_reference = false;
     let mut cooldown = 0usize;
     // the best accepted iterate that meets every constraint: returned at the iteration limit
@@ -137,7 +172,7 @@ where
         let scale = 1.0 + reference_eval.magnitude;
         let negligible = !first && predicted <= settings.tolerance * scale;
 
-        let mut record = crate::plan::ScpIteration {
+        let mut record = Iteration {
             trust_region: radius,
             merit_before: phi_ref,
             merit_after: phi_cand,
@@ -145,19 +180,18 @@ where
             ratio,
             accepted: false,
             violation: candidate_eval.max_violation,
-            solver_status: format!("{:?}", report.status),
-            solver_iterations: report.iterations,
-            solver_time_s: report.solve_time_s,
+            solve: report,
         };
 
         if negligible {
-            trace.push(record);
+            iterations += 1;
+            observer(&record);
             if reference_eval.max_violation <= settings.feasibility_tol {
                 return Ok(ScpOutcome {
                     iterate: reference,
                     status: ScpStatus::Converged,
                     evaluation: reference_eval,
-                    trace,
+                    iterations,
                     solve_time_s: start.elapsed().as_secs_f64(),
                 });
             }
@@ -193,7 +227,8 @@ where
                 radius = (radius * GROW).min(max_radius);
             }
         }
-        trace.push(record);
+        iterations += 1;
+        observer(&record);
         if radius < settings.min_trust_region {
             break;
         }
@@ -209,7 +244,7 @@ where
             iterate: reference,
             status: ScpStatus::MaxIterations,
             evaluation: reference_eval,
-            trace,
+            iterations,
             solve_time_s: start.elapsed().as_secs_f64(),
         })
     } else if have_feasible_reference {
@@ -229,7 +264,7 @@ pub enum ScpFailure {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::conic::{ConicSolver, Pattern, Triplets};
+    use crate::conic::{ConicSolution, ConicSolver, Pattern, Triplets};
     use clarabel::solver::SupportedConeT::*;
 
     /// min x² + y² s.t. the nonconvex constraint x·y ≥ 1 (so g = 1 − xy ≤ 0), from (3, 0.5).
@@ -249,12 +284,13 @@ mod tests {
     impl ScpProblem for Hyperbola {
         type Iterate = [f64; 2];
         type Error = Fail;
+        type Report = ();
         fn solve_model(
             &mut self,
             r: &[f64; 2],
             radius: f64,
             penalty: f64,
-        ) -> Result<([f64; 2], f64, ConicSolution), Fail> {
+        ) -> Result<([f64; 2], f64, ()), Fail> {
             // variables x, y, ν; g_lin = 1 − x̄ȳ − ȳ(x − x̄) − x̄(y − ȳ) ≤ ν
             let mut p = Triplets::default();
             p.push(0, 0, 2.0);
@@ -285,11 +321,11 @@ mod tests {
                     .unwrap(),
                 ),
             };
-            let sol = s.solve();
+            let sol: ConicSolution = s.solve();
             assert!(sol.usable());
             let x = [sol.x[0], sol.x[1]];
             let merit = sol.x[0].powi(2) + sol.x[1].powi(2) + penalty * sol.x[2];
-            Ok((x, merit, sol))
+            Ok((x, merit, ()))
         }
         fn evaluate(&self, x: &[f64; 2]) -> Evaluation {
             let v = (1.0 - x[0] * x[1]).max(0.0);
@@ -313,8 +349,16 @@ mod tests {
             tolerance: 1e-7,
             ..Scp::default()
         };
-        let out = solve(&mut Hyperbola { solver: None }, [3.0, 0.5], &settings).unwrap();
+        let mut seen = 0;
+        let out = solve(
+            &mut Hyperbola { solver: None },
+            [3.0, 0.5],
+            &settings,
+            &mut |_| seen += 1,
+        )
+        .unwrap();
         assert_eq!(out.status, ScpStatus::Converged);
+        assert_eq!(seen, out.iterations);
         assert!((out.iterate[0] - 1.0).abs() < 1e-4, "{:?}", out.iterate);
         assert!((out.iterate[1] - 1.0).abs() < 1e-4, "{:?}", out.iterate);
         assert!(out.evaluation.max_violation < 1e-6);

@@ -2,20 +2,21 @@
 //! calls the planner; the checker itself never does.)
 
 use shoal::check::check_plan;
-use shoal::planner::{plan, scenario_floor, FloorSource, PlanInput};
+use shoal::mission::{scenario_floor, FloorSource};
 use shoal::scenario::Scenario;
 use shoal::seafloor::Seafloor;
 
 /// Plan `s` over `f` (the test's own floor, recorded as a file floor).
 fn plan_on(s: &Scenario, f: &Seafloor, source: FloorSource) -> shoal::plan::Plan {
-    let input = PlanInput {
-        scenario: s,
-        floor: f,
+    let input = shoal::Provenance {
         scenario_source: "test".into(),
         overrides: vec![],
-        seafloor_source: source,
+        seafloor: source,
     };
-    plan(&input).expect("the planner plans")
+    shoal::Planner::new(s, f)
+        .provenance(input)
+        .run()
+        .expect("the planner plans")
 }
 
 /// A sloping floor with two Gaussian seamounts, 25 m cells over [−3000, 3000]².
@@ -133,7 +134,7 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
 mod random {
     use super::*;
     use proptest::prelude::*;
-    use shoal::planner::PlanError;
+    use shoal::PlanError;
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
@@ -158,14 +159,8 @@ mod random {
             s.seafloor.synthetic.seamounts = seamounts;
             s.seafloor.synthetic.valleys = valleys;
             let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
-            let input = PlanInput {
-                scenario: &s,
-                floor: &f,
-                scenario_source: "proptest".into(),
-                overrides: vec![],
-                seafloor_source: source,
-            };
-            match plan(&input) {
+            let input = shoal::Provenance { scenario_source: "proptest".into(), overrides: vec![], seafloor: source };
+            match shoal::Planner::new(&s, &f).provenance(input).run() {
                 Ok(p) => {
                     let r = check_plan(&p, &f);
                     prop_assert!(r.passed(), "seed {seed}:\n{}", r.table());

@@ -4,8 +4,8 @@
 mod common;
 use common::{plan_and_check, plan_scenario, shoal};
 
-use shoal::planner::PlanError;
 use shoal::scenario::{self, Scenario};
+use shoal::PlanError;
 
 /// A small scenario that still exercises every constraint family: 2 AUVs, 8 steps, 2 windows.
 fn small(seed: u64) -> Scenario {

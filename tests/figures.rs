@@ -5,7 +5,7 @@ mod common;
 use common::shoal;
 
 use shoal::figures::{FIGURES, TABLE};
-use shoal::planner::{plan, scenario_floor, PlanInput};
+use shoal::mission::scenario_floor;
 use shoal::scenario;
 use std::path::{Path, PathBuf};
 
@@ -18,14 +18,14 @@ fn small_plan(dir: &Path) -> (shoal::plan::Plan, PathBuf) {
     ])
     .unwrap();
     let (floor, source) = scenario_floor(&s, Path::new("")).unwrap();
-    let p = plan(&PlanInput {
-        scenario: &s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    })
-    .expect("plan");
+    let p = shoal::Planner::new(&s, &floor)
+        .provenance(shoal::Provenance {
+            scenario_source: "test".into(),
+            overrides: vec![],
+            seafloor: source,
+        })
+        .run()
+        .expect("plan");
     let path = dir.join("plan.json");
     shoal::output::write_plan(&p, &path).unwrap();
     (p, path)

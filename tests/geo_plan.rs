@@ -5,7 +5,7 @@
 mod common;
 
 use common::*;
-use shoal::planner::scenario_floor;
+use shoal::mission::scenario_floor;
 use shoal::scenario::{self, Scenario};
 use shoal::seafloor::{load, LoadOptions, SampleType, TiffCompression};
 use std::path::Path;

@@ -5,8 +5,8 @@
 mod common;
 
 use common::{plan_and_check, strips, tif};
+use shoal::mission::scenario_floor;
 use shoal::plan::{Plan, Stage};
-use shoal::planner::scenario_floor;
 use shoal::scenario::{self, Scenario};
 use shoal::seafloor::{Crs, SampleType, Seafloor, TiffCompression};
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@
 //! --no-install-recommends chromium`); `.ci/run` installs them. Without them the browser test
 //! fails, saying so, unless SHOAL_SKIP_BROWSER=1.
 
-use shoal::planner::{plan, scenario_floor, PlanInput};
+use shoal::mission::scenario_floor;
 use shoal::scenario;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -20,14 +20,14 @@ fn small_plan() -> (shoal::plan::Plan, shoal::seafloor::Seafloor) {
     ])
     .expect("valid overrides");
     let (floor, source) = scenario_floor(&s, Path::new("")).expect("floor");
-    let p = plan(&PlanInput {
-        scenario: &s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    })
-    .expect("plan");
+    let p = shoal::Planner::new(&s, &floor)
+        .provenance(shoal::Provenance {
+            scenario_source: "test".into(),
+            overrides: vec![],
+            seafloor: source,
+        })
+        .run()
+        .expect("plan");
     (p, floor)
 }
 

@@ -4,7 +4,7 @@
 // each bench binary compiles this module and uses part of it
 #![allow(dead_code)]
 
-use shoal::planner::{initial_state, scenario_floor, FloorSource};
+use shoal::mission::{initial_state, scenario_floor, FloorSource};
 use shoal::scenario::Scenario;
 use shoal::seafloor::Seafloor;
 use shoal::trajectory::Start;

@@ -23,42 +23,44 @@ const GUESS_CLEARANCE: f64 = 50.0;
 /// falls linearly to 0 at `clearance`.
 const NEAR_COST: f64 = 4.0;
 
-impl TeamProblem<'_> {
-    /// The USV's first-guess inputs along a course from the start round the obstacles to near
-    /// `to` (`detour::detour`) at `speed`, keeping the team's extent (the farthest AUV from the
-    /// USV at the start, plus `GUESS_CLEARANCE`) from them; None if the straight course keeps
-    /// it already.
-    pub(super) fn round_obstacles(&self, to: [f64; 2], speed: f64) -> Option<Vec<[f64; 2]>> {
-        let from = self.start.usv;
-        let extent = self
-            .start
-            .auvs
-            .iter()
-            .map(|a| (a.position[0] - from[0]).hypot(a.position[1] - from[1]))
-            .fold(0.0, f64::max);
-        let course = detour(self.keep_out, from, to, extent + GUESS_CLEARANCE)?;
-        // walk the course at `speed`, one step of δ at a time, stopping at its end
-        let dt = self.scenario.horizon.dt;
-        let mut inputs = Vec::with_capacity(self.layout.k);
-        let (mut p, mut leg) = (from, 1);
-        for _ in 0..self.layout.k {
-            let mut left = speed * dt;
-            let start = p;
-            while left > 0.0 && leg < course.len() {
-                let q = course[leg];
-                let d = (q[0] - p[0]).hypot(q[1] - p[1]);
-                if d <= left {
-                    (p, left, leg) = (q, left - d, leg + 1);
-                } else {
-                    let t = left / d;
-                    p = [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
-                    left = 0.0;
-                }
+/// The USV's first-guess inputs along a course from the start round the obstacles to near
+/// `to` (`detour::detour`) at `speed`, keeping the team's extent (the farthest AUV from the
+/// USV at the start, plus `GUESS_CLEARANCE`) from them; None if the straight course keeps
+/// it already.
+pub(super) fn round_obstacles(
+    problem: &TeamProblem,
+    to: [f64; 2],
+    speed: f64,
+) -> Option<Vec<[f64; 2]>> {
+    let from = problem.start.usv;
+    let extent = problem
+        .start
+        .auvs
+        .iter()
+        .map(|a| (a.position[0] - from[0]).hypot(a.position[1] - from[1]))
+        .fold(0.0, f64::max);
+    let course = detour(problem.keep_out, from, to, extent + GUESS_CLEARANCE)?;
+    // walk the course at `speed`, one step of δ at a time, stopping at its end
+    let dt = problem.scenario.horizon.dt;
+    let mut inputs = Vec::with_capacity(problem.layout.k);
+    let (mut p, mut leg) = (from, 1);
+    for _ in 0..problem.layout.k {
+        let mut left = speed * dt;
+        let start = p;
+        while left > 0.0 && leg < course.len() {
+            let q = course[leg];
+            let d = (q[0] - p[0]).hypot(q[1] - p[1]);
+            if d <= left {
+                (p, left, leg) = (q, left - d, leg + 1);
+            } else {
+                let t = left / d;
+                p = [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+                left = 0.0;
             }
-            inputs.push([(p[0] - start[0]) / dt, (p[1] - start[1]) / dt]);
         }
-        Some(inputs)
+        inputs.push([(p[0] - start[0]) / dt, (p[1] - start[1]) / dt]);
     }
+    Some(inputs)
 }
 
 /// A course from `from` to near `to` round the obstacles of the keep-out field `keep_out`

@@ -1,5 +1,6 @@
 //! The first reference of Step 1 (Algorithm 1, line 9): the team in formation behind the USV.
 
+use super::detour::round_obstacles;
 use super::TeamProblem;
 use crate::scenario::UsvObjective;
 use crate::scp::ScpProblem;
@@ -12,111 +13,107 @@ const GUESS_HEIGHT: f64 = 5.0;
 /// when the USV does not move).
 const SPEED_FRACTIONS: [f64; 6] = [1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125];
 
-impl TeamProblem<'_> {
-    /// The first reference. The USV heads out in a straight line (towards the destination, or
-    /// along `usv.initial_heading` / its current course) at a constant speed, never zero, so
-    /// that the concave OF1_8 has a nonzero gradient to start from. Each AUV follows it in
-    /// formation: its horizontal velocity is the USV's from step 1 on (the ZOH model reaches a
-    /// commanded velocity within one step), and it descends towards `GUESS_HEIGHT` above the
-    /// floor ahead. Over a grid with obstacles the USV's course goes round them (`detour`), the
-    /// team still in formation.
-    ///
-    /// The speed is the fraction (`SPEED_FRACTIONS`) of full speed (or of the speed that
-    /// reaches the destination at k = K) whose formation has the least objective: the trust
-    /// region moves a reference only Δ metres per SCP iteration, so a guess kilometres from the
-    /// optimum costs tens of iterations. (At full speed always, Step 1 with 20 AUVs, which
-    /// finds moving the team not worth its energy and keeps the USV within about 200 m, took
-    /// 37–48 iterations; starting the AUVs at rest instead of in formation took 50 where 10
-    /// sufficed.) The objective, not the merit: a formation that changes course at the start of
-    /// a window turns too sharply at any speed above v_min, where the heading is undefined, so
-    /// the merit would always pick the slowest guess.
-    pub fn initial_guess(&self, previous_heading: Option<f64>) -> Trajectory {
-        let s = self.scenario;
-        let kk = self.layout.k;
-        let dt = s.horizon.dt;
-        let (dir, speed) = match s.usv.objective {
-            UsvObjective::Destination => {
-                // towards the destination, arriving at k = K if it is nearer than full speed goes
-                let d = [
-                    s.usv.destination[0] - self.start.usv[0],
-                    s.usv.destination[1] - self.start.usv[1],
-                ];
-                let reach = d[0].hypot(d[1]) / (kk as f64 * dt);
-                (d[1].atan2(d[0]), s.usv.max_speed.min(reach))
-            }
-            UsvObjective::Away => (
-                previous_heading.unwrap_or(s.usv.initial_heading),
-                s.usv.max_speed,
-            ),
-        };
-        // the USV's speed: the fraction of `speed` whose formation has the least objective
-        SPEED_FRACTIONS
-            .iter()
-            .map(|f| {
-                let t = self.formation(dir, f * speed);
-                (self.evaluate(&t).objective, t)
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .expect("SPEED_FRACTIONS is not empty")
-            .1
-    }
+/// The first reference. The USV heads out in a straight line (towards the destination, or
+/// along `usv.initial_heading` / its current course) at a constant speed, never zero, so
+/// that the concave OF1_8 has a nonzero gradient to start from. Each AUV follows it in
+/// formation: its horizontal velocity is the USV's from step 1 on (the ZOH model reaches a
+/// commanded velocity within one step), and it descends towards `GUESS_HEIGHT` above the
+/// floor ahead. Over a grid with obstacles the USV's course goes round them (`detour`), the
+/// team still in formation.
+///
+/// The speed is the fraction (`SPEED_FRACTIONS`) of full speed (or of the speed that
+/// reaches the destination at k = K) whose formation has the least objective: the trust
+/// region moves a reference only Δ metres per SCP iteration, so a guess kilometres from the
+/// optimum costs tens of iterations (BENCHMARKS.md, "Design history"). The objective, not the
+/// merit: a formation that changes course at the start of
+/// a window turns too sharply at any speed above v_min, where the heading is undefined, so
+/// the merit would always pick the slowest guess.
+pub(super) fn initial_guess(problem: &TeamProblem, previous_heading: Option<f64>) -> Trajectory {
+    let s = problem.scenario;
+    let kk = problem.layout.k;
+    let dt = s.horizon.dt;
+    let (dir, speed) = match s.usv.objective {
+        UsvObjective::Destination => {
+            // towards the destination, arriving at k = K if it is nearer than full speed goes
+            let d = [
+                s.usv.destination[0] - problem.start.usv[0],
+                s.usv.destination[1] - problem.start.usv[1],
+            ];
+            let reach = d[0].hypot(d[1]) / (kk as f64 * dt);
+            (d[1].atan2(d[0]), s.usv.max_speed.min(reach))
+        }
+        UsvObjective::Away => (
+            previous_heading.unwrap_or(s.usv.initial_heading),
+            s.usv.max_speed,
+        ),
+    };
+    // the USV's speed: the fraction of `speed` whose formation has the least objective
+    SPEED_FRACTIONS
+        .iter()
+        .map(|f| {
+            let t = formation(problem, dir, f * speed);
+            (problem.evaluate(&t).objective, t)
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("SPEED_FRACTIONS is not empty")
+        .1
+}
 
-    /// The formation guess with the USV at `speed` along `dir` (see `initial_guess`).
-    fn formation(&self, dir: f64, speed: f64) -> Trajectory {
-        let s = self.scenario;
-        let (kk, nn) = (self.layout.k, self.layout.n);
-        let dt = s.horizon.dt;
-        let u = [speed * dir.cos(), speed * dir.sin()];
-        // at the grid's edge the guess stops (the plan may not leave the known map)
-        let toward = |p: [f64; 3], u: [f64; 2]| {
-            let q = self.inside([p[0] + u[0] * dt, p[1] + u[1] * dt, p[2]]);
-            [(q[0] - p[0]) / dt, (q[1] - p[1]) / dt]
-        };
-        let mut usv_u = Vec::with_capacity(kk);
-        let mut q = [self.start.usv[0], self.start.usv[1], 0.0];
-        for _ in 0..kk {
-            let v = toward(q, u);
-            q = [q[0] + v[0] * dt, q[1] + v[1] * dt, 0.0];
-            usv_u.push(v);
-        }
-        if self.layout.obstacles {
-            if let Some(u) = self.round_obstacles([q[0], q[1]], speed) {
-                usv_u = u;
-            }
-        }
-        let m = &self.auv;
-        let top = -s.auv.surface_clearance;
-        let height = s.auv.floor_clearance + GUESS_HEIGHT;
-        let auv_u = self
-            .start
-            .auvs
-            .iter()
-            .map(|a| {
-                let (mut p, mut v) = (a.position, a.velocity);
-                usv_u
-                    .iter()
-                    .map(|&uk| {
-                        let h = toward(p, uk);
-                        let ahead = [p[0] + h[0] * dt, p[1] + h[1] * dt, 0.0];
-                        let z = (self.keep_out_linearisation(ahead).0 + height).min(top);
-                        let target = [h[0], h[1], (z - p[2]) / dt];
-                        // deadbeat velocity: V[k+1] = vv·V[k] + vu·U[k] = target
-                        let input: [f64; 3] =
-                            std::array::from_fn(|i| (target[i] - m.vv[i] * v[i]) / m.vu[i]);
-                        (p, v) = m.step(p, v, input);
-                        input
-                    })
-                    .collect()
-            })
-            .collect::<Vec<_>>();
-        debug_assert_eq!(auv_u.len(), nn);
-        Trajectory::simulate(&self.start, usv_u, auv_u, &self.auv, &self.usv)
+/// The formation guess with the USV at `speed` along `dir` (see `initial_guess`).
+fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> Trajectory {
+    let s = problem.scenario;
+    let (kk, nn) = (problem.layout.k, problem.layout.n);
+    let dt = s.horizon.dt;
+    let u = [speed * dir.cos(), speed * dir.sin()];
+    // at the grid's edge the guess stops (the plan may not leave the known map)
+    let toward = |p: [f64; 3], u: [f64; 2]| {
+        let q = problem.inside([p[0] + u[0] * dt, p[1] + u[1] * dt, p[2]]);
+        [(q[0] - p[0]) / dt, (q[1] - p[1]) / dt]
+    };
+    let mut usv_u = Vec::with_capacity(kk);
+    let mut q = [problem.start.usv[0], problem.start.usv[1], 0.0];
+    for _ in 0..kk {
+        let v = toward(q, u);
+        q = [q[0] + v[0] * dt, q[1] + v[1] * dt, 0.0];
+        usv_u.push(v);
     }
+    if problem.layout.obstacles {
+        if let Some(u) = round_obstacles(problem, [q[0], q[1]], speed) {
+            usv_u = u;
+        }
+    }
+    let m = &problem.auv;
+    let top = -s.auv.surface_clearance;
+    let height = s.auv.floor_clearance + GUESS_HEIGHT;
+    let auv_u = problem
+        .start
+        .auvs
+        .iter()
+        .map(|a| {
+            let (mut p, mut v) = (a.position, a.velocity);
+            usv_u
+                .iter()
+                .map(|&uk| {
+                    let h = toward(p, uk);
+                    let ahead = [p[0] + h[0] * dt, p[1] + h[1] * dt, 0.0];
+                    let z = (problem.keep_out_linearisation(ahead).0 + height).min(top);
+                    let target = [h[0], h[1], (z - p[2]) / dt];
+                    // deadbeat velocity: V[k+1] = vv·V[k] + vu·U[k] = target
+                    let input: [f64; 3] =
+                        std::array::from_fn(|i| (target[i] - m.vv[i] * v[i]) / m.vu[i]);
+                    (p, v) = m.step(p, v, input);
+                    input
+                })
+                .collect()
+        })
+        .collect::<Vec<_>>();
+    debug_assert_eq!(auv_u.len(), nn);
+    Trajectory::simulate(&problem.start, usv_u, auv_u, &problem.auv, &problem.usv)
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::planner::{initial_state, scenario_floor};
+    use crate::mission::{initial_state, scenario_floor};
     use crate::scenario::Scenario;
     use crate::team::TeamProblem;
     use crate::trajectory::Start;

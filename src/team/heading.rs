@@ -8,10 +8,8 @@
 //!   ‖a‖ < v_min   or   ‖b‖ < v_min   or   ∠(a, b) ≤ θ = ψ̇_max·δ.
 //!
 //! The SCP needs a violation that is continuous, else it cannot see that an AUV at 0.1006 m/s
-//! reversing is almost feasible (slow it by 0.6 mm/s) while one at 0.0999 m/s is feasible:
-//! with a measure that jumped at v_min, Step 3 with 15–20 AUVs accepted such reversals (the
-//! merit saw nothing) and then stalled at a trust region of millimetres, unable to remove a
-//! 2.4 rad "turn" it could not price. Here the violation is
+//! reversing is almost feasible (slow it by 0.6 mm/s) while one at 0.0999 m/s is feasible
+//! (BENCHMARKS.md, "Design history", has what a jumping measure did). Here the violation is
 //!
 //!   v(a, b) = max(0, min(g(a, b), ‖a‖ − v_min, ‖b‖ − v_min))   (m/s),
 //!
@@ -25,16 +23,27 @@
 //! linearisation error for the SCP to reject):
 //! - Turn, k ≥ 2: both a and b within θ/2 of the bisector d̂ of (ā, b̄) (`HeadingRule::axis`),
 //!   two linear rows each: ±(d̂ × v) − tan(θ/2)·(d̂·v) ≤ ν. The angle between them is then at most
-//!   θ, and a reference that turns within θ meets it. (Linearising the turn instead, about ā's
-//!   direction, was rejected time and again with 15–20 AUVs: at 0.1–0.3 m/s a change of a few
-//!   cm/s swings ā's direction by tenths of a radian.)
+//!   θ, and a reference that turns within θ meets it. (A linearisation about ā's direction is
+//!   poor at low speed: at 0.1–0.3 m/s a change of a few cm/s swings it by tenths of a radian.)
 //! - Turn, k = 1: a = V\[0\] is the window's fixed start, so the same rows about â with the full
 //!   θ are exact.
 //! - Slow: the second-order cone ‖V_h‖ ≤ v_min·(1 − SLOW_MARGIN) + ν.
 //!
-//! θ here is the model's, tightened by `team::HEADING_MARGIN`.
+//! θ here is the model's, tightened by [`HEADING_MARGIN`].
+//!
+//! Departure: this replaces the paper's C2_3/C2_4 (eq. (11)), which bound each velocity
+//! component by a multiple of the same component one step earlier: a component that is zero
+//! (the AUVs start at rest) would then stay zero for ever.
 
+use super::model::{Assembly, INACTIVE};
+use super::TeamProblem;
 use crate::linearise::Heading;
+use crate::scenario::Scenario;
+use crate::trajectory::Trajectory;
+use clarabel::solver::SupportedConeT::SecondOrderConeT;
+
+/// Turn (rad per step) the convex model keeps below ψ̇_max·δ (constraint tightening).
+const HEADING_MARGIN: f64 = 0.005;
 
 /// The alternative of the disjunction the convex model keeps for one AUV and step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -89,6 +98,18 @@ fn norm(v: [f64; 2]) -> f64 {
 }
 
 impl HeadingRule {
+    /// The scenario's rule: its ψ̇_max, δ and v_min, the model's rate tightened by
+    /// [`HEADING_MARGIN`].
+    pub fn of(s: &Scenario) -> HeadingRule {
+        let (rate, dt) = (s.auv.max_heading_rate, s.horizon.dt);
+        HeadingRule::new(
+            rate,
+            (rate - HEADING_MARGIN / dt).max(0.0),
+            dt,
+            s.auv.min_heading_speed,
+        )
+    }
+
     /// The rule for a largest turn rate `rate` (rad/s) over steps of `dt` s, the model's rate
     /// `model_rate` (tightened), and v_min.
     pub fn new(rate: f64, model_rate: f64, dt: f64, v_min: f64) -> HeadingRule {
@@ -185,6 +206,117 @@ impl HeadingRule {
     pub fn slow_bound(&self) -> f64 {
         self.v_min * (1.0 - SLOW_MARGIN)
     }
+}
+
+/// The horizontal part of a velocity.
+pub(super) fn h2(v: [f64; 3]) -> [f64; 2] {
+    [v[0], v[1]]
+}
+
+/// The heading slacks' price: the SCP's penalty λ per m/s, times δ (m/s → m over one step).
+pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
+    let l = p.layout;
+    let dt = p.scenario.horizon.dt;
+    for n in 0..l.n {
+        for k in 1..=l.k {
+            m.q[l.heading_slack(n, k)] = penalty * dt; // m/s → m over one step
+        }
+    }
+}
+
+/// The alternative of C1_14 the model keeps for each AUV n and step k = 1..=K (index k − 1),
+/// about the reference `r`.
+pub(super) fn pieces(p: &TeamProblem, r: &Trajectory) -> Vec<Vec<Piece>> {
+    (0..p.layout.n)
+        .map(|n| {
+            (1..=p.layout.k)
+                .map(|k| {
+                    let (a, b) = (h2(r.auv_v[n][k - 1]), h2(r.auv_v[n][k]));
+                    p.heading.piece(a, b, k == 1)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// C1_14's Turn piece where the model keeps it: per AUV and step two rows on V_h[k−1] and two on
+/// V_h\[k\], all sharing ν_h\[n\]\[k\] (padding rows elsewhere, so the pattern is fixed).
+pub(super) fn rows(p: &TeamProblem, r: &Trajectory, pieces: &[Vec<Piece>], m: &mut Assembly) {
+    let l = p.layout;
+    for n in 0..l.n {
+        for k in 1..=l.k {
+            let a = h2(r.auv_v[n][k - 1]);
+            let b = h2(r.auv_v[n][k]);
+            let (rows_a, rows_b) = if pieces[n][k - 1] == Piece::Turn {
+                let (ra, rb) = p.heading.turn_rows(a, b, k == 1);
+                (ra, Some(rb))
+            } else {
+                (None, None)
+            };
+            for (rows, kv) in [(rows_a, k - 1), (rows_b, k)] {
+                for i in 0..2 {
+                    let c = rows.map_or([0.0; 2], |r| r[i]);
+                    let row = m.row(if rows.is_some() { 0.0 } else { INACTIVE });
+                    if kv >= 1 {
+                        for (j, cj) in c.iter().enumerate() {
+                            m.a.push(row, l.auv_v(n, kv) + j, *cj);
+                        }
+                    }
+                    m.a.push(row, l.heading_slack(n, k), -1.0);
+                }
+            }
+        }
+    }
+}
+
+/// C1_14's "slow" alternatives: per AUV and step k = 1..=K the cone
+/// ‖V_h,n\[k\]‖ ≤ v_min·(1 − SLOW_MARGIN) + ν_h\[n\]\[k\] + ν_h\[n\]\[k+1\], where the slack of pair k
+/// enters when it keeps `SlowAfter` and that of pair k + 1 when it keeps `SlowBefore`; a speed
+/// bound no AUV reaches (2·V_max) where neither does.
+pub(super) fn cones(p: &TeamProblem, pieces: &[Vec<Piece>], m: &mut Assembly) {
+    let l = p.layout;
+    let loose = 2.0 * p.scenario.auv.max_speed;
+    for n in 0..l.n {
+        for k in 1..=l.k {
+            let after = pieces[n][k - 1] == Piece::SlowAfter;
+            let before = k < l.k && pieces[n][k] == Piece::SlowBefore;
+            let row = m.row(if after || before {
+                p.heading.slow_bound()
+            } else {
+                loose
+            });
+            m.a.push(row, l.heading_slack(n, k), if after { -1.0 } else { 0.0 });
+            if k < l.k {
+                m.a.push(
+                    row,
+                    l.heading_slack(n, k + 1),
+                    if before { -1.0 } else { 0.0 },
+                );
+            }
+            for i in 0..2 {
+                let row = m.row(0.0);
+                m.a.push(row, l.auv_v(n, k) + i, 1.0);
+            }
+            m.cones.push(SecondOrderConeT(3));
+        }
+    }
+}
+
+/// The true violation at step k of AUV n: (the continuous violation v in m/s for the merit, the
+/// turn beyond θ in rad as the checker measures it).
+pub(super) fn violation(p: &TeamProblem, t: &Trajectory, n: usize, k: usize) -> (f64, f64) {
+    let a = h2(t.auv_v[n][k - 1]);
+    let b = h2(t.auv_v[n][k]);
+    (p.heading.violation(a, b), p.heading.excess(a, b))
+}
+
+/// The message of a turn of `angle` rad beyond ψ̇_max·δ by AUV n between steps k − 1 and k.
+pub(super) fn detail(n: usize, k: usize, angle: f64) -> String {
+    format!(
+        "heading rate C1_14: AUV {n} turns {angle:.3} rad more than ψ̇_max·δ between steps {} \
+         and {k}",
+        k - 1
+    )
 }
 
 #[cfg(test)]

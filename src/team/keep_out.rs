@@ -11,19 +11,16 @@
 //! Both are linearised about the reference at the samples of 𝓛_r, the `FLOOR_ROWS` (USV) or
 //! `LOS_ROWS` (link) samples with the largest g getting a row sharing one slack per segment,
 //! like the AUVs' floor rows; the SCP measures the true violation at every sample
-//! (`keep_out_violations`). Over a grid without obstacles none of this exists, and the problem
+//! (`violations`). Over a grid without obstacles none of this exists, and the problem
 //! is exactly the one without obstacle handling.
 
-use super::assemble::{pick_samples, Assembly, FLOOR_ROWS, INACTIVE};
-use super::TeamProblem;
+use super::floor::{pick_samples, FLOOR_ROWS};
+use super::links::{describe, end_columns, ends};
+use super::model::{Assembly, INACTIVE};
+use super::{TeamProblem, OBSTACLE};
+use crate::error::PlanError;
 use crate::linearise::{floor_sample, lerp, segment_intervals};
-use crate::planner::PlanError;
-use crate::step3::describe;
-use crate::step3::links::ends;
 use crate::trajectory::Trajectory;
-
-/// How an infeasible keep-out constraint is named in errors.
-pub(super) const OBSTACLE: &str = "obstacle (NODATA/land cells are kept out of)";
 
 /// Margin (metres) by which the USV keeps the keep-out field below the surface, and a link
 /// above it. Unlike the AUVs' `FLOOR_MARGIN`, which only the convex model asks for, it is part
@@ -46,192 +43,180 @@ pub(super) enum KeepOut {
     Link { k: usize, li: usize, at: [f64; 3] },
 }
 
-impl TeamProblem<'_> {
-    /// See the module docs. Rows touch only P_USV[k−1] and P_USV[k], so the pattern is fixed.
-    pub(super) fn usv_rows(&self, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
-        let l = self.layout;
-        if !l.obstacles {
-            return Ok(());
-        }
-        let at = |k: usize| self.inside([r.usv_p[k][0], r.usv_p[k][1], 0.0]);
+/// The keep-out slacks' price (over a grid with obstacles): the SCP's penalty λ per metre.
+pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
+    let l = p.layout;
+    if l.obstacles {
         for k in 1..=l.k {
-            let p0 = (k == 1).then_some([self.start.usv[0], self.start.usv[1], 0.0]);
-            let rows = self.sample_rows(at(k - 1), at(k), KEEP_OUT_MARGIN, FLOOR_ROWS, true, p0)?;
+            m.q[l.usv_slack(k)] = penalty;
+            for li in 0..l.links {
+                m.q[l.los_slack(li, k)] = penalty;
+            }
+        }
+    }
+}
+
+/// See the module docs. Rows touch only P_USV[k−1] and P_USV[k], so the pattern is fixed.
+pub(super) fn usv_rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
+    let l = p.layout;
+    if !l.obstacles {
+        return Ok(());
+    }
+    let at = |k: usize| p.inside([r.usv_p[k][0], r.usv_p[k][1], 0.0]);
+    for k in 1..=l.k {
+        let p0 = (k == 1).then_some([p.start.usv[0], p.start.usv[1], 0.0]);
+        let rows = sample_rows(p, at(k - 1), at(k), KEEP_OUT_MARGIN, FLOOR_ROWS, true, p0)?;
+        for (t, c, rhs) in rows {
+            let row = m.row(rhs);
+            if k > 1 {
+                for i in 0..2 {
+                    m.a.push(row, l.usv_p(k - 1) + i, (1.0 - t) * c[i]);
+                }
+            }
+            for i in 0..2 {
+                m.a.push(row, l.usv_p(k) + i, t * c[i]);
+            }
+            m.a.push(row, l.usv_slack(k), -1.0);
+        }
+    }
+    Ok(())
+}
+
+/// See the module docs: per planned link and step, the keep-out field at least
+/// `KEEP_OUT_MARGIN` below the link at its interior samples (the ends are held by the floor
+/// rows and the USV's rows). Rows touch the link's two ends.
+pub(super) fn los_rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
+    let l = p.layout;
+    let Some(set) = p.links.as_ref().filter(|_| l.obstacles) else {
+        return Ok(());
+    };
+    for k in 1..=l.k {
+        for (li, &link) in set.links[k].iter().enumerate() {
+            let (a, b) = ends(r, k, link);
+            let (a, b) = (p.inside(a), p.inside(b));
+            let rows = sample_rows(p, a, b, KEEP_OUT_MARGIN, LOS_ROWS, false, None)?;
+            let (ca, cb) = (end_columns(l, k, Some(link.a)), end_columns(l, k, link.b));
             for (t, c, rhs) in rows {
                 let row = m.row(rhs);
-                if k > 1 {
-                    for i in 0..2 {
-                        m.a.push(row, l.usv_p(k - 1) + i, (1.0 - t) * c[i]);
+                for i in 0..3 {
+                    if let Some(col) = ca[i] {
+                        m.a.push(row, col, (1.0 - t) * c[i]);
+                    }
+                    if let Some(col) = cb[i] {
+                        m.a.push(row, col, t * c[i]);
                     }
                 }
-                for i in 0..2 {
-                    m.a.push(row, l.usv_p(k) + i, t * c[i]);
-                }
-                m.a.push(row, l.usv_slack(k), -1.0);
+                m.a.push(row, l.los_slack(li, k), -1.0);
             }
         }
-        Ok(())
     }
+    Ok(())
+}
 
-    /// See the module docs: per planned link and step, the keep-out field at least
-    /// `KEEP_OUT_MARGIN` below the link at its interior samples (the ends are held by the floor
-    /// rows and the USV's rows). Rows touch the link's two ends.
-    pub(super) fn los_rows(&self, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
-        let l = self.layout;
-        let Some(set) = self.links.as_ref().filter(|_| l.obstacles) else {
-            return Ok(());
-        };
-        for k in 1..=l.k {
+/// `count` rows (t, c, rhs) of g = field(x_t, y_t) + margin − z_t ≤ ν linearised about the
+/// reference segment a → b at the samples t = j/n of 𝓛_r with the largest g, j = 1..=n
+/// (`with_end`) or 1..n: a row reads (1 − t)·c·P_a + t·c·P_b − ν ≤ rhs, c = (∇field, −1).
+/// With `fixed_a`, P_a is the window's fixed start and its term is moved into rhs. Missing
+/// samples are inactive rows (c = 0, rhs = `INACTIVE`), so that the pattern never
+/// changes.
+fn sample_rows(
+    p: &TeamProblem,
+    a: [f64; 3],
+    b: [f64; 3],
+    margin: f64,
+    count: usize,
+    with_end: bool,
+    fixed_a: Option<[f64; 3]>,
+) -> Result<Vec<(f64, [f64; 3], f64)>, PlanError> {
+    let n = segment_intervals(a, b, p.scenario.acoustic.resolution);
+    let last = if with_end { n } else { n - 1 };
+    let mut g = Vec::with_capacity(last);
+    for j in 1..=last {
+        g.push((
+            floor_sample(p.keep_out, margin, a, b, j as f64 / n as f64)?.0,
+            j,
+        ));
+    }
+    let picks = pick_samples(&mut g, count);
+    (0..count)
+        .map(|slot| {
+            let Some(&j) = picks.get(slot) else {
+                return Ok((0.0, [0.0; 3], INACTIVE));
+            };
+            let t = j as f64 / n as f64;
+            let (gv, grad) = floor_sample(p.keep_out, margin, a, b, t)?;
+            let c = [grad[0], grad[1], -1.0];
+            // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
+            let p = lerp(a, b, t);
+            let mut rhs = c[0] * p[0] + c[1] * p[1] + c[2] * p[2] - gv;
+            if let Some(p0) = fixed_a {
+                rhs -= (1.0 - t) * (c[0] * p0[0] + c[1] * p0[1] + c[2] * p0[2]);
+            }
+            Ok((t, c, rhs))
+        })
+        .collect()
+}
+
+/// Every keep-out violation of `t` in metres (the USV's per segment: the field's height
+/// above `KEEP_OUT_MARGIN` below the surface; each link's per step: the field's height
+/// above `KEEP_OUT_MARGIN` below the link), worst sample of each; empty over a grid without
+/// obstacles.
+pub(super) fn violations(p: &TeamProblem, t: &Trajectory) -> Vec<(f64, KeepOut)> {
+    let l = p.layout;
+    let mut out = Vec::new();
+    if !l.obstacles {
+        return out;
+    }
+    let r = p.scenario.acoustic.resolution;
+    let worst = |a: [f64; 3], b: [f64; 3]| match p.keep_out.segment_clearance(a, b, r) {
+        Ok(c) => (KEEP_OUT_MARGIN - c.min_clearance, c.at),
+        // off the grid: only a reference the grid bounds have not yet acted on
+        Err(_) => (f64::INFINITY, b),
+    };
+    for k in 1..=l.k {
+        let [a, b] = [k - 1, k].map(|i| [t.usv_p[i][0], t.usv_p[i][1], 0.0]);
+        let (v, at) = worst(a, b);
+        out.push((v, KeepOut::Usv { k, at }));
+        if let Some(set) = &p.links {
             for (li, &link) in set.links[k].iter().enumerate() {
-                let (a, b) = ends(r, k, link);
-                let (a, b) = (self.inside(a), self.inside(b));
-                let rows = self.sample_rows(a, b, KEEP_OUT_MARGIN, LOS_ROWS, false, None)?;
-                let (ca, cb) = (
-                    self.end_columns(k, Some(link.a)),
-                    self.end_columns(k, link.b),
-                );
-                for (t, c, rhs) in rows {
-                    let row = m.row(rhs);
-                    for i in 0..3 {
-                        if let Some(col) = ca[i] {
-                            m.a.push(row, col, (1.0 - t) * c[i]);
-                        }
-                        if let Some(col) = cb[i] {
-                            m.a.push(row, col, t * c[i]);
-                        }
-                    }
-                    m.a.push(row, l.los_slack(li, k), -1.0);
-                }
+                let (a, b) = ends(t, k, link);
+                let (v, at) = worst(a, b);
+                out.push((v, KeepOut::Link { k, li, at }));
             }
         }
-        Ok(())
     }
+    out
+}
 
-    /// `count` rows (t, c, rhs) of g = field(x_t, y_t) + margin − z_t ≤ ν linearised about the
-    /// reference segment a → b at the samples t = j/n of 𝓛_r with the largest g, j = 1..=n
-    /// (`with_end`) or 1..n: a row reads (1 − t)·c·P_a + t·c·P_b − ν ≤ rhs, c = (∇field, −1).
-    /// With `fixed_a`, P_a is the window's fixed start and its term is moved into rhs. Missing
-    /// samples are inactive rows (c = 0, rhs = `INACTIVE`), so that the pattern never
-    /// changes.
-    fn sample_rows(
-        &self,
-        a: [f64; 3],
-        b: [f64; 3],
-        margin: f64,
-        count: usize,
-        with_end: bool,
-        fixed_a: Option<[f64; 3]>,
-    ) -> Result<Vec<(f64, [f64; 3], f64)>, PlanError> {
-        let n = segment_intervals(a, b, self.scenario.acoustic.resolution);
-        let last = if with_end { n } else { n - 1 };
-        let mut g = Vec::with_capacity(last);
-        for j in 1..=last {
-            g.push((
-                floor_sample(self.keep_out, margin, a, b, j as f64 / n as f64)?.0,
-                j,
-            ));
-        }
-        let picks = pick_samples(&mut g, count);
-        (0..count)
-            .map(|slot| {
-                let Some(&j) = picks.get(slot) else {
-                    return Ok((0.0, [0.0; 3], INACTIVE));
-                };
-                let t = j as f64 / n as f64;
-                let (gv, grad) = floor_sample(self.keep_out, margin, a, b, t)?;
-                let c = [grad[0], grad[1], -1.0];
-                // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
-                let p = lerp(a, b, t);
-                let mut rhs = c[0] * p[0] + c[1] * p[1] + c[2] * p[2] - gv;
-                if let Some(p0) = fixed_a {
-                    rhs -= (1.0 - t) * (c[0] * p0[0] + c[1] * p0[1] + c[2] * p0[2]);
-                }
-                Ok((t, c, rhs))
-            })
-            .collect()
-    }
-
-    /// Every keep-out violation of `t` in metres (the USV's per segment: the field's height
-    /// above `KEEP_OUT_MARGIN` below the surface; each link's per step: the field's height
-    /// above `KEEP_OUT_MARGIN` below the link), worst sample of each; empty over a grid without
-    /// obstacles.
-    pub(super) fn keep_out_violations(&self, t: &Trajectory) -> Vec<(f64, KeepOut)> {
-        let l = self.layout;
-        let mut out = Vec::new();
-        if !l.obstacles {
-            return out;
-        }
-        let r = self.scenario.acoustic.resolution;
-        let worst = |a: [f64; 3], b: [f64; 3]| match self.keep_out.segment_clearance(a, b, r) {
-            Ok(c) => (KEEP_OUT_MARGIN - c.min_clearance, c.at),
-            // off the grid: only a reference the grid bounds have not yet acted on
-            Err(_) => (f64::INFINITY, b),
-        };
-        for k in 1..=l.k {
-            let [a, b] = [k - 1, k].map(|i| [t.usv_p[i][0], t.usv_p[i][1], 0.0]);
-            let (v, at) = worst(a, b);
-            out.push((v, KeepOut::Usv { k, at }));
-            if let Some(set) = &self.links {
-                for (li, &link) in set.links[k].iter().enumerate() {
-                    let (a, b) = ends(t, k, link);
-                    let (v, at) = worst(a, b);
-                    out.push((v, KeepOut::Link { k, li, at }));
-                }
-            }
-        }
-        out
-    }
-
-    /// The error text of a keep-out violation: the constraint, the vehicle or link, the step,
-    /// the position and the obstacle.
-    pub(super) fn keep_out_detail(&self, what: KeepOut) -> String {
-        let why = |at: [f64; 3]| {
-            self.obstacle_text(at)
-                .unwrap_or_else(|| "below the floor or off the grid".into())
-        };
-        match what {
-            KeepOut::Usv { k, at } => format!(
-                "{OBSTACLE}: the USV between steps {} and {k} passes ({:.1}, {:.1}), which is {}",
-                k - 1,
+/// The error text of a keep-out violation: the constraint, the vehicle or link, the step,
+/// the position and the obstacle.
+pub(super) fn detail(p: &TeamProblem, what: KeepOut) -> String {
+    let why = |at: [f64; 3]| {
+        p.obstacle_text(at)
+            .unwrap_or_else(|| "below the floor or off the grid".into())
+    };
+    match what {
+        KeepOut::Usv { k, at } => format!(
+            "{OBSTACLE}: the USV between steps {} and {k} passes ({:.1}, {:.1}), which is {}",
+            k - 1,
+            at[0],
+            at[1],
+            why(at)
+        ),
+        KeepOut::Link { k, li, at } => {
+            let link = p
+                .links
+                .as_ref()
+                .map_or("link".into(), |s| describe(s.links[k][li]));
+            format!(
+                "line of sight C1_13 ({OBSTACLE}): the {link} at step {k} passes \
+                 ({:.1}, {:.1}, {:.1}), which is {}",
                 at[0],
                 at[1],
+                at[2],
                 why(at)
-            ),
-            KeepOut::Link { k, li, at } => {
-                let link = self
-                    .links
-                    .as_ref()
-                    .map_or("link".into(), |s| describe(s.links[k][li]));
-                format!(
-                    "line of sight C1_13 ({OBSTACLE}): the {link} at step {k} passes \
-                     ({:.1}, {:.1}, {:.1}), which is {}",
-                    at[0],
-                    at[1],
-                    at[2],
-                    why(at)
-                )
-            }
-        }
-    }
-
-    /// Why the point (x, y) of p is kept out of: over an obstacle cell (what kind), or next
-    /// to one, where the keep-out field is raised above the floor. None elsewhere.
-    pub(super) fn obstacle_text(&self, p: [f64; 3]) -> Option<String> {
-        let (x, y) = (p[0], p[1]);
-        if let Ok(Some(o)) = self.floor.obstacle(x, y) {
-            return Some(o.to_string());
-        }
-        let (Ok(field), Ok(floor)) = (self.keep_out.elevation(x, y), self.floor.elevation(x, y))
-        else {
-            return None;
-        };
-        (field > floor).then(|| {
-            format!(
-                "next to an obstacle cell (NODATA or land), where the planner's keep-out field \
-                 rises from the floor to above the surface (z = {field:.1} m here, the floor \
-                 {floor:.1} m)"
             )
-        })
+        }
     }
 }
 
@@ -242,7 +227,7 @@ mod tests {
     use crate::scenario::Scenario;
     use crate::scp::ScpProblem;
     use crate::seafloor::Seafloor;
-    use crate::step3::LinkSet;
+    use crate::team::LinkSet;
     use crate::trajectory::Start;
     use crate::vehicle::{AuvModel, UsvModel};
 
@@ -341,7 +326,7 @@ mod tests {
             "{m}"
         );
         // every violation is measured: the link's at both steps, none of the paths'
-        let v = p5.keep_out_violations(&t);
+        let v = violations(&p5, &t);
         assert_eq!(v.len(), 4);
         assert!(matches!(v[0], (u, KeepOut::Usv { k: 1, .. }) if u < 0.0));
         assert!(matches!(v[1], (u, KeepOut::Link { k: 1, li: 0, .. }) if u > 1.0));

@@ -42,11 +42,9 @@ impl Layout {
     /// `position` (metres) for positions, 1 for the rest (velocities and inputs are of order
     /// 10⁻² to 1 in SI units already, as are the slacks).
     ///
-    /// Unscaled, positions of 10²–10³ m sat beside inputs of 10⁻² m/s², and Clarabel, whose
-    /// tolerances hold for its equilibrated problem, left the inputs of the flat-floor test
-    /// 2–4·10⁻⁴ from the closed-form optimum whatever its tolerances (10⁻⁶ to 10⁻¹⁰). With
-    /// positions in units of d_s they are within 2·10⁻⁶; the 8-seed sweep of BENCHMARKS.md took
-    /// as many interior-point iterations and 7 % less time.
+    /// Unscaled, positions of 10²–10³ m sit beside inputs of 10⁻² m/s², and Clarabel's
+    /// tolerances hold for its equilibrated problem, which leaves the small variables poorly
+    /// resolved (BENCHMARKS.md, "Design history").
     pub fn scale(&self, position: f64) -> Vec<f64> {
         let mut d = vec![1.0; self.variables()];
         for k in 1..=self.k {

@@ -12,11 +12,11 @@ mod graph;
 mod malformed;
 
 use shoal::check::{check_plan, load_floor, CheckError, CheckReport};
+use shoal::mission::FloorSource;
 use shoal::plan::{
     AuvPath, AuvState, InitialState, ModelRecord, ObjectiveTerms, Plan, Stage, UsvPath, Window,
     FORMAT,
 };
-use shoal::planner::FloorSource;
 use shoal::scenario::{Discretisation, Scenario, UsvObjective};
 use shoal::seafloor::Seafloor;
 use shoal::vehicle::{AuvModel, Damping, UsvModel};

@@ -205,15 +205,15 @@ pub fn utm_survey_scenario(dir: &Path) -> shoal::scenario::Scenario {
 /// Plans `s` over its scenario floor as `shoal plan` does; returns the plan and the floor.
 pub fn plan_scenario(
     s: &shoal::scenario::Scenario,
-) -> Result<(shoal::plan::Plan, Seafloor), shoal::planner::PlanError> {
-    let (floor, source) = shoal::planner::scenario_floor(s, Path::new(""))?;
-    let p = shoal::planner::plan(&shoal::planner::PlanInput {
-        scenario: s,
-        floor: &floor,
-        scenario_source: "test".into(),
-        overrides: vec![],
-        seafloor_source: source,
-    })?;
+) -> Result<(shoal::plan::Plan, Seafloor), shoal::PlanError> {
+    let (floor, source) = shoal::mission::scenario_floor(s, Path::new(""))?;
+    let p = shoal::Planner::new(s, &floor)
+        .provenance(shoal::Provenance {
+            scenario_source: "test".into(),
+            overrides: vec![],
+            seafloor: source,
+        })
+        .run()?;
     Ok((p, floor))
 }
 
@@ -221,7 +221,7 @@ pub fn plan_scenario(
 /// same floor from the plan alone.
 pub fn plan_and_check(
     s: &shoal::scenario::Scenario,
-) -> Result<(shoal::plan::Plan, Seafloor), shoal::planner::PlanError> {
+) -> Result<(shoal::plan::Plan, Seafloor), shoal::PlanError> {
     let (p, floor) = plan_scenario(s)?;
     let report = shoal::check::check_plan(&p, &floor);
     assert!(report.passed(), "plan fails its check:\n{}", report.table());

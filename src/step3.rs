@@ -4,58 +4,67 @@
 //!   s.t.  C5_1 = Step 1's constraints (dynamics, ranges, speeds, floor along segments, heading)
 //!         C5_2, C5_3: every planned link's length in its band [d_s − d_t, d_s]
 //!
-//! P5 is the team problem of `team` with Step 2's links added (`assemble`), solved by the same
-//! SCvx loop, starting from Step 1's plan. Departures from the paper:
-//! - The bands are on lengths in metres (the paper writes a squared norm beside d_s).
-//! - The bands are soft: each end has a slack penalised by w3 (A2U) or w4 (A2A) per metre, the
-//!   paper's OF1_3/OF1_4. AUVs depart from random points at rest, and two picked as path
-//!   neighbours can start 250 m apart; a hard band would make P5 infeasible. Every (step, link)
-//!   left outside its band is reported in the plan (`links.out_of_band`). The hard requirement,
-//!   that every AUV reaches the USV through links in range and in line of sight at every step,
-//!   is verified after the loop (`planner`, with `metrics::first_cut_off`) and by `shoal check`.
+//! P5 is the window problem of `team` with Step 2's links added (its link bands in
+//! `team::links`, OF1_5 in `team::spread`, the links' keep-out rows in `team::keep_out`), solved
+//! by the same SCvx loop, starting from Step 1's plan. What is Step 3's own is the loop round it:
+//! - The bands are soft (`team::links`); every (step, link) left outside its band is reported in
+//!   the plan (`links.out_of_band`). The hard requirement, that every AUV reaches the USV through
+//!   links in range and in line of sight at every step, is verified after the loop (`planner`,
+//!   with `metrics::first_cut_off`) and by `shoal check`.
 //! - Line of sight (C1_13): after each P5 solve every planned link is tested with the seafloor's
 //!   𝓛_r query over the keep-out field (`Seafloor::keep_out`), so a link over an obstacle cell
 //!   (NODATA or land) is blocked as one under the floor is; a blocked link has its band's upper end lowered by `acoustic.los_shrink` (and
 //!   the lower end with it when the band would close) and P5 is solved again from the last
 //!   plan, at most `acoustic.los_rounds` times.
 
-mod assemble;
-pub mod links;
-
-pub use links::LinkSet;
-
-use crate::plan::{Band, Link, OutOfBand};
-use crate::planner::PlanError;
-use crate::scp::ScpOutcome;
+use crate::conic::SolveReport;
+use crate::error::PlanError;
+use crate::plan::{Band, OutOfBand};
+use crate::scp::{Iteration, ScpOutcome};
 use crate::seafloor::Seafloor;
-use crate::team::TeamProblem;
+use crate::team::{self, describe, LinkSet, TeamProblem};
 use crate::trajectory::Trajectory;
 
 /// What Step 3 returns for a window.
 pub struct Step3 {
+    /// The last round's SCP outcome.
     pub outcome: ScpOutcome<Trajectory>,
     /// The links with the bands of the last round.
     pub links: LinkSet,
+    /// Rounds of the line-of-sight loop (P5 solves).
     pub los_rounds: usize,
+    /// Every (step, link) left outside its band.
     pub out_of_band: Vec<OutOfBand>,
     /// SCP iterations summed over the rounds.
     pub iterations: usize,
 }
 
-/// Solve P5 for `problem` (built with links) from Step 1's plan, with the line-of-sight loop.
-pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, PlanError> {
-    let s = problem.scenario;
-    let (r, shrink) = (s.acoustic.resolution, s.acoustic.los_shrink);
+/// Solve P5 for `problem` (built with links) from Step 1's plan, with the line-of-sight loop;
+/// `observer` hears of every SCP iteration of every round.
+pub fn solve(
+    problem: &mut TeamProblem,
+    step1: &Trajectory,
+    observer: &mut dyn FnMut(&Iteration<SolveReport>),
+) -> Result<Step3, PlanError> {
+    let acoustic = &problem.scenario().acoustic;
+    let (r, shrink, max_rounds) = (
+        acoustic.resolution,
+        acoustic.los_shrink,
+        acoustic.los_rounds,
+    );
     let mut reference = step1.clone();
     let mut iterations = 0;
-    let mut trace = Vec::new();
     let mut round = 0;
     loop {
         round += 1;
-        let mut out = problem.solve(reference)?;
-        iterations += out.trace.len();
-        trace.append(&mut out.trace);
-        let Some(set) = problem.links.as_mut() else {
+        let out = problem.solve(reference, observer)?;
+        iterations += out.iterations;
+        let (floor, keep_out) = (problem.floor(), problem.keep_out());
+        let blocked = match problem.links() {
+            Some(set) => blocked_links(floor, keep_out, set, &out.iterate, r),
+            None => Vec::new(),
+        };
+        let Some(set) = problem.links_mut() else {
             // without links this is P2: nothing to keep in sight
             return Ok(Step3 {
                 links: LinkSet {
@@ -68,9 +77,7 @@ pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, Pla
                 outcome: out,
             });
         };
-        let blocked = blocked_links(problem.floor, problem.keep_out, set, &out.iterate, r);
         if blocked.is_empty() {
-            out.trace = trace;
             let links = set.clone();
             let out_of_band = out_of_band(&links, &out.iterate);
             return Ok(Step3 {
@@ -81,7 +88,7 @@ pub fn solve(problem: &mut TeamProblem, step1: &Trajectory) -> Result<Step3, Pla
                 iterations,
             });
         }
-        if round >= s.acoustic.los_rounds {
+        if round >= max_rounds {
             let (k, li, why) = &blocked[0];
             return Err(PlanError::LineOfSight {
                 link: describe(set.links[*k][*li]),
@@ -117,7 +124,7 @@ fn blocked_links(
     let mut out = Vec::new();
     for k in 1..set.links.len() {
         for (li, &link) in set.links[k].iter().enumerate() {
-            let (a, b) = links::ends(t, k, link);
+            let (a, b) = team::ends(t, k, link);
             match keep_out.segment_clearance(a, b, resolution) {
                 Ok(c) if c.min_clearance >= 0.0 => {}
                 Ok(c) => {
@@ -157,8 +164,8 @@ fn out_of_band(set: &LinkSet, t: &Trajectory) -> Vec<OutOfBand> {
     let mut out = Vec::new();
     for k in 1..set.links.len() {
         for (&link, &band) in set.links[k].iter().zip(&set.bands[k]) {
-            let length = links::length(t, k, link);
-            if links::outside(length, band) > 1e-3 {
+            let length = team::length(t, k, link);
+            if team::outside(length, band) > 1e-3 {
                 out.push(OutOfBand {
                     k,
                     link,
@@ -171,18 +178,10 @@ fn out_of_band(set: &LinkSet, t: &Trajectory) -> Vec<OutOfBand> {
     out
 }
 
-/// "A2U link AUV 2–USV" or "A2A edge AUV 1–AUV 4".
-pub fn describe(link: Link) -> String {
-    match link.b {
-        None => format!("A2U link AUV {}–USV", link.a),
-        Some(b) => format!("A2A edge AUV {}–AUV {b}", link.a),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plan::Graph;
+    use crate::plan::{Graph, Link};
 
     /// A floor at −100 m with a ridge rising to −20 m along x = 0.
     fn ridge() -> Seafloor {

@@ -1,17 +1,21 @@
 //! Step 2 of Section IV-A: the acoustic graph of every step, from Step 1's positions
-//! (Algorithm 1, lines 13–16): P3 picks the A2U link (the AUV nearest the USV), P4 the A2A
-//! graph (the longest Hamiltonian path, `graph::longest_path`).
+//! (Algorithm 1, lines 13–16): P3 picks the A2U link (the AUV nearest the USV, `p3_a2u`), P4
+//! the A2A graph (the longest Hamiltonian path, `p4_hamiltonian`).
 //!
 //! Departure: over a grid with obstacles, P4 avoids A2A edges that cross an obstacle cell
 //! (NODATA or land, `Seafloor::segment_obstacle`): among the Hamiltonian paths with the fewest
-//! such edges it takes the longest (`graph::longest_path_avoiding`). No link sees through an
+//! such edges it takes the longest (`p4_hamiltonian::longest_path_avoiding`). No link sees through an
 //! obstacle, and P5 cannot make two AUVs on either side of one see each other by pulling them
 //! together (they would have to go round it). Over a grid without obstacles nothing changes.
 
-use crate::graph::{a2u_link, longest_path_avoiding};
+pub mod p3_a2u;
+pub mod p4_hamiltonian;
+
 use crate::plan::Graph;
 use crate::seafloor::Seafloor;
 use crate::trajectory::Trajectory;
+use p3_a2u::a2u_link;
+use p4_hamiltonian::longest_path_avoiding;
 use std::time::Instant;
 
 /// P3 and P4 at every step k = 0..=K of `t`, over `floor` sampled at `resolution` (𝓛_r).

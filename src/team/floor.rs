@@ -1,0 +1,157 @@
+//! C2_2, seafloor clearance (the paper's C1_12 as Step 1 models it): every AUV at least ε above
+//! the floor, Z(x, y) + ε − z ≤ 0, not only at the waypoints but at every sample of 𝓛_r along
+//! each segment k−1 → k (100 s apart, a seamount can sit between two waypoints), over the
+//! keep-out field (`Seafloor::keep_out`), in which every obstacle cell (NODATA, land) lies above
+//! the surface.
+//!
+//! Departure: the paper freezes Z at the previous iterate's position ("𝕫_n[k] is found and
+//! bounded"); here C2_2 is linearised about the reference (value and gradient of Z) and
+//! softened by a slack ν_f[n][k] per segment, priced by the SCP's penalty, as SCvx needs.
+//! The true violation is the segment's worst sample.
+
+use super::model::{Assembly, INACTIVE};
+use super::{TeamProblem, OBSTACLE};
+use crate::error::PlanError;
+use crate::linearise::{floor_sample, segment_intervals};
+use crate::trajectory::Trajectory;
+
+/// Extra clearance (m) the convex model asks for beyond ε (constraint tightening). 0.5 m, not
+/// 0.25 m: the floor's linearisation error over a step of tens of metres is often 0.3–0.7 m,
+/// and every step it broke was rejected (BENCHMARKS.md).
+pub(super) const FLOOR_MARGIN: f64 = 0.5;
+
+/// Floor rows per segment (see [`rows`]).
+pub(super) const FLOOR_ROWS: usize = 12;
+
+/// The floor slacks' price: the SCP's penalty λ per metre.
+pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
+    let l = p.layout;
+    for n in 0..l.n {
+        for k in 1..=l.k {
+            m.q[l.floor_slack(n, k)] = penalty;
+        }
+    }
+}
+
+/// C2_2 linearised at the segment samples of the reference, over the keep-out field (so that
+/// no sample can lie over an obstacle cell). The samples are those of the paper's 𝓛_r
+/// (fractions j/n, j = 1..=n, n = ⌈horizontal length / r⌉); of these, the `FLOOR_ROWS` with the
+/// least clearance on the reference (spread out: a sample next to one already taken is taken
+/// last) get a row, all sharing the group's slack ν_f[n][k]. The SCP measures the true
+/// violation over every sample, so a sample left out this iteration that the step makes
+/// critical is picked up at the next one, and convergence is only declared when all of them
+/// hold. Every row touches P[k−1] and P[k], so the pattern is fixed.
+pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
+    let l = p.layout;
+    // constraint tightening: the model asks for FLOOR_MARGIN more than ε, so the error of the
+    // linearisation cannot leave the true constraint (measured with ε) violated at the end
+    let eps = p.scenario.auv.floor_clearance + FLOOR_MARGIN;
+    let res = p.scenario.acoustic.resolution;
+    let mut g = Vec::new();
+    for n in 0..l.n {
+        for k in 1..=l.k {
+            // a first guess may run past the grid's edge: linearise at the nearest point
+            // inside (the grid-bound rows bring the candidate back in)
+            let (pa, pb) = (p.inside(r.auv_p[n][k - 1]), p.inside(r.auv_p[n][k]));
+            let used = segment_intervals(pa, pb, res);
+            g.clear();
+            for j in 1..=used {
+                let sj = j as f64 / used as f64;
+                g.push((floor_sample(p.keep_out, eps, pa, pb, sj)?.0, j));
+            }
+            let picks = pick_samples(&mut g, FLOOR_ROWS);
+            for slot in 0..FLOOR_ROWS {
+                let row_data = match picks.get(slot) {
+                    Some(&j) => {
+                        let sj = j as f64 / used as f64;
+                        let (gv, grad) = floor_sample(p.keep_out, eps, pa, pb, sj)?;
+                        let c = [grad[0], grad[1], -1.0];
+                        // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
+                        let ps = crate::linearise::lerp(pa, pb, sj);
+                        let mut rhs = c[0] * ps[0] + c[1] * ps[1] + c[2] * ps[2] - gv;
+                        if k == 1 {
+                            let p0 = p.start.auvs[n].position;
+                            rhs -= (1.0 - sj) * (c[0] * p0[0] + c[1] * p0[1] + c[2] * p0[2]);
+                        }
+                        Some((sj, c, rhs))
+                    }
+                    None => None,
+                };
+                let (sj, c, rhs) = row_data.unwrap_or((0.0, [0.0; 3], INACTIVE));
+                let row = m.row(rhs);
+                if k > 1 {
+                    for i in 0..3 {
+                        m.a.push(row, l.auv_p(n, k - 1) + i, (1.0 - sj) * c[i]);
+                    }
+                }
+                for i in 0..3 {
+                    m.a.push(row, l.auv_p(n, k) + i, sj * c[i]);
+                }
+                m.a.push(row, l.floor_slack(n, k), -1.0);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Up to `count` sample indices from (g, j) pairs: largest g first, skipping a neighbour (j ± 1)
+/// of one already taken until no other sample is left.
+pub(super) fn pick_samples(g: &mut [(f64, usize)], count: usize) -> Vec<usize> {
+    g.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let mut picks: Vec<usize> = Vec::with_capacity(count);
+    for &(_, j) in g.iter() {
+        if picks.len() == count {
+            break;
+        }
+        if !picks.iter().any(|&p| p.abs_diff(j) <= 1) {
+            picks.push(j);
+        }
+    }
+    for &(_, j) in g.iter() {
+        if picks.len() == count {
+            break;
+        }
+        if !picks.contains(&j) {
+            picks.push(j);
+        }
+    }
+    picks
+}
+
+/// The true violation: worst floor-clearance shortfall (metres) of the segment k−1 → k of AUV
+/// n over the keep-out field, sampled by the seafloor's own 𝓛_r rule, and where it occurs.
+pub(super) fn violation(p: &TeamProblem, t: &Trajectory, n: usize, k: usize) -> (f64, [f64; 3]) {
+    let (a, b) = (t.auv_p[n][k - 1], t.auv_p[n][k]);
+    match p
+        .keep_out
+        .segment_clearance(a, b, p.scenario.acoustic.resolution)
+    {
+        Ok(c) => (p.scenario.auv.floor_clearance - c.min_clearance, c.at),
+        // Outside the grid: only possible for a reference the bounds have not yet acted on.
+        Err(_) => (f64::INFINITY, b),
+    }
+}
+
+/// The message of a violation at `at` on the segment k−1 → k of AUV n: C2_2 with the floor's
+/// height, or the obstacle the point is in or next to.
+pub(super) fn detail(p: &TeamProblem, n: usize, k: usize, at: [f64; 3]) -> String {
+    let eps = p.scenario.auv.floor_clearance;
+    let passes = format!(
+        "AUV {n} between steps {} and {k} passes ({:.1}, {:.1}, {:.1})",
+        k - 1,
+        at[0],
+        at[1],
+        at[2]
+    );
+    match p.obstacle_text(at) {
+        Some(why) => format!("{OBSTACLE}: {passes}, which is {why}"),
+        None => {
+            let floor = p.floor.elevation(at[0], at[1]).unwrap_or(f64::NAN);
+            format!(
+                "seafloor clearance C2_2: {passes} where the floor is at z = {floor:.1} m; it \
+                 needs {eps:.1} m of clearance and has {:.2} m",
+                at[2] - floor
+            )
+        }
+    }
+}

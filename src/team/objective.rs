@@ -1,0 +1,157 @@
+//! The objective of the window problem: P2's OF2 = w1·OF1_1 + w2·OF1_2 − w8·OF1_8 (or with
+//! w8_2·OF1_8_2 added instead), and P5's OF5 = OF2 − w5·OF1_5 plus the link bands' prices
+//! w3·OF1_3 and w4·OF1_4 (`spread`, `links`): the true terms of a trajectory and their convex
+//! model.
+//!
+//! Departures from the paper, each for a reason:
+//! - OF1_8 does not depend on k, so it enters once (w8 absorbs the paper's factor K).
+//! - OF1_1 sums the AUV inputs only: the USV's input is a velocity, not a per-mass force.
+//! - OF1_2 is the height above the floor, Σ (z − Z(x, y)), by default (`weights.of1_2 =
+//!   "height"`); the paper's Σ z (`"depth"`) rewards depth, not hugging the floor. The height
+//!   term and the concave OF1_8 are linearised about the reference in the model.
+
+use super::model::Assembly;
+use super::{spread, TeamProblem};
+use crate::linearise::usv_away;
+use crate::scenario::{DepthObjective, UsvObjective};
+use crate::trajectory::Trajectory;
+
+/// The unweighted objective terms for a trajectory (P2's, plus P5's when links are set).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Terms {
+    /// OF1_1: Σ ‖U_n[k]‖², (m/s²)².
+    pub energy: f64,
+    /// Σ z.
+    pub depth: f64,
+    /// Σ (z − Z(x, y)).
+    pub height: f64,
+    /// OF1_8 (−‖P_USV[K] − P_USV[0]‖²) or OF1_8_2 (‖P_USV[K] − P∞‖²), m².
+    pub usv: f64,
+    /// OF1_5: Σ_k Σ ‖P_i − P_j‖² over pairs not joined by an A2A edge at k, m².
+    pub spread: f64,
+    /// OF1_3 as C5_2's slack: Σ_k metres by which the A2U link is outside its band.
+    pub band_a2u: f64,
+    /// OF1_4 as C5_3's slack: Σ_k Σ metres by which A2A edges are outside their bands.
+    pub band_a2a: f64,
+}
+
+/// Unweighted objective terms of `t` (OF1_1, OF1_2, OF1_8 or OF1_8_2, and P5's).
+pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
+    let energy = t
+        .auv_u
+        .iter()
+        .flatten()
+        .map(|u| u.iter().map(|c| c * c).sum::<f64>())
+        .sum();
+    let depth = t
+        .auv_p
+        .iter()
+        .flat_map(|p| p[1..].iter())
+        .map(|p| p[2])
+        .sum();
+    let height = t
+        .auv_p
+        .iter()
+        .flat_map(|p| p[1..].iter())
+        .map(|q| q[2] - p.floor_linearisation(*q).0)
+        .sum();
+    let (spread, band_a2u, band_a2a) = match &p.links {
+        Some(links) => {
+            let (a2u, a2a) = links.band_terms(t);
+            (spread::value(links, t), a2u, a2a)
+        }
+        None => (0.0, 0.0, 0.0),
+    };
+    let pk = t.usv_p[p.layout.k];
+    let s = p.scenario;
+    let usv = match s.usv.objective {
+        UsvObjective::Away => -usv_away([pk[0] - p.start.usv[0], pk[1] - p.start.usv[1]]).0,
+        UsvObjective::Destination => {
+            let d = s.usv.destination;
+            (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
+        }
+    };
+    Terms {
+        energy,
+        depth,
+        height,
+        usv,
+        spread,
+        band_a2u,
+        band_a2a,
+    }
+}
+
+/// The weighted terms of J: w1·OF1_1, w2·OF1_2, the USV term, −w5·OF1_5, w3·OF1_3, w4·OF1_4
+/// (the last three zero without links).
+pub(super) fn weighted(p: &TeamProblem, t: &Terms) -> [f64; 6] {
+    let w = &p.scenario.weights;
+    let usv = match p.scenario.usv.objective {
+        UsvObjective::Away => -w.w8 * t.usv,
+        UsvObjective::Destination => w.w8_2 * t.usv,
+    };
+    let of1_2 = match w.of1_2 {
+        DepthObjective::Height => t.height,
+        DepthObjective::Depth => t.depth,
+    };
+    [
+        w.w1 * t.energy,
+        w.w2 * of1_2,
+        usv,
+        -w.w5 * t.spread,
+        w.w3 * t.band_a2u,
+        w.w4 * t.band_a2a,
+    ]
+}
+
+/// The model of OF2 about the reference `r`: w1·OF1_1 (quadratic, exact), w2·OF1_2 (the height
+/// term linearised) and the USV term (OF1_8 linearised, or OF1_8_2, convex and exact).
+pub(super) fn model(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) {
+    let l = p.layout;
+    let (kk, nn) = (l.k, l.n);
+    let s = p.scenario;
+    let w = &s.weights;
+    for n in 0..nn {
+        for k in 0..kk {
+            for i in 0..3 {
+                m.p.push(l.auv_u(n, k) + i, l.auv_u(n, k) + i, 2.0 * w.w1); // OF1_1
+            }
+        }
+        for k in 1..=kk {
+            let col = l.auv_p(n, k);
+            m.q[col + 2] = w.w2; // OF1_2: Σ z …
+            if s.weights.of1_2 == DepthObjective::Height {
+                // … − Z(x, y), linearised about the reference: height above the floor
+                let x = r.auv_p[n][k];
+                let (zr, grad) = p.floor_linearisation(x);
+                m.q[col] = -w.w2 * grad[0];
+                m.q[col + 1] = -w.w2 * grad[1];
+                m.constant -= w.w2 * (zr - grad[0] * x[0] - grad[1] * x[1]);
+            }
+        }
+    }
+    let pk = l.usv_p(kk);
+    let p0 = p.start.usv;
+    match s.usv.objective {
+        UsvObjective::Away => {
+            // −w8·‖P[K] − P[0]‖², concave: linearised about the reference (OF1_8)
+            let d_ref = [r.usv_p[kk][0] - p0[0], r.usv_p[kk][1] - p0[1]];
+            let (value, grad) = usv_away(d_ref);
+            for i in 0..2 {
+                m.p.push(pk + i, pk + i, 0.0);
+                m.q[pk + i] = w.w8 * grad[i];
+            }
+            m.constant += w.w8 * (value - grad[0] * d_ref[0] - grad[1] * d_ref[1])
+                - w.w8 * (grad[0] * p0[0] + grad[1] * p0[1]);
+        }
+        UsvObjective::Destination => {
+            // w8_2·‖P[K] − P∞‖² (OF1_8_2), convex
+            let dest = s.usv.destination;
+            for i in 0..2 {
+                m.p.push(pk + i, pk + i, 2.0 * w.w8_2);
+                m.q[pk + i] = -2.0 * w.w8_2 * dest[i];
+            }
+            m.constant += w.w8_2 * (dest[0] * dest[0] + dest[1] * dest[1]);
+        }
+    }
+}
