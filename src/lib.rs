@@ -24,7 +24,8 @@
 //!   gradients).
 //! - [`plan`]: the plan file (`shoal-plan/2`); [`output`]: atomic writing of plan.json and CSVs;
 //!   [`positions`]: a plan's positions in latitude/longitude or the grid's projected CRS.
-//! - [`check`]: independent verification of a plan against the seafloor.
+//! - [`check`](mod@check): independent verification of a plan against the seafloor
+//!   ([`check()`](fn@check) runs it).
 //! - [`report`]: the plan's summary table; [`viewer`]: the plan as one self-contained,
 //!   interactive 3D HTML page (three.js); [`figures`]: PNG and SVG figures of a plan.
 

@@ -8,20 +8,35 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
+/// Errors of writing output files and reading plan files.
 #[derive(Debug, Error)]
 pub enum OutputError {
+    /// Creating the directory, writing the temporary file or renaming it into place failed, or
+    /// the plan could not be serialised.
     #[error("cannot write {path}: {source}")]
     Write {
+        /// The file's path.
         path: PathBuf,
+        /// The underlying I/O error.
         source: std::io::Error,
     },
+    /// A plan file could not be read.
     #[error("cannot read plan {path}: {source}")]
     Read {
+        /// The file's path.
         path: PathBuf,
+        /// The underlying I/O error.
         source: std::io::Error,
     },
+    /// A file is not valid JSON, has no "format" field or another format than
+    /// [`crate::plan::FORMAT`], or does not deserialise as a [`Plan`].
     #[error("{path} is not a shoal plan: {why}")]
-    Parse { path: PathBuf, why: String },
+    Parse {
+        /// The file's path.
+        path: PathBuf,
+        /// What is wrong with it.
+        why: String,
+    },
 }
 
 /// Write `bytes` to `path` atomically (temporary file in the same directory, then rename).

@@ -21,23 +21,47 @@ use crate::seafloor::geo::LocalFrame;
 use std::path::Path;
 use thiserror::Error;
 
+/// Errors of exporting a plan's positions.
 #[derive(Debug, Error)]
 pub enum PositionsError {
+    /// The plan's seafloor origin is no valid local-frame origin: not finite, |latitude| above
+    /// [`crate::seafloor::geo::MAX_ORIGIN_LATITUDE`] or |longitude| above 360°.
     #[error("the plan's seafloor origin [{lat}, {lon}]: {why}")]
-    Origin { lat: f64, lon: f64, why: String },
+    Origin {
+        /// The origin's latitude, degrees.
+        lat: f64,
+        /// The origin's longitude, degrees.
+        lon: f64,
+        /// Why the frame was refused.
+        why: String,
+    },
+    /// A vehicle's position cannot be converted to latitude and longitude: it is not finite or
+    /// farther than [`crate::seafloor::geo::MAX_FRAME_DISTANCE`] from the origin.
     #[error(
         "{vehicle} at ({x}, {y}) (window {window}, k = {k}) is beyond the local frame's range \
          from the origin: no latitude/longitude"
     )]
     OutOfRange {
+        /// The vehicle: "usv", "auv0", "auv1", …
         vehicle: String,
+        /// The window's index, 0-based.
         window: usize,
+        /// The step within the window, 0..=K.
         k: usize,
+        /// The position's x (east) in the planner's frame, metres.
         x: f64,
+        /// The position's y (north) in the planner's frame, metres.
         y: f64,
     },
+    /// Encoding the CSV failed.
     #[error("cannot write {path}: {why}")]
-    Csv { path: String, why: String },
+    Csv {
+        /// The output file's path.
+        path: String,
+        /// The CSV writer's error message.
+        why: String,
+    },
+    /// Writing the output file failed.
     #[error(transparent)]
     Output(#[from] OutputError),
 }
@@ -50,7 +74,10 @@ pub enum Georef {
     /// The local tangent plane of a geographic grid.
     Geographic(LocalFrame),
     /// A projected grid's own coordinates; its CRS as the plan records it.
-    Projected { crs: String },
+    Projected {
+        /// The plan's `seafloor.crs`: `"EPSG:<code>"` or "projected (user-defined)".
+        crs: String,
+    },
 }
 
 impl Georef {
@@ -111,11 +138,15 @@ impl Georef {
 /// One position of one vehicle.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row {
+    /// The window's index, 0-based.
     pub window: usize,
+    /// The step within the window, 0..=K.
     pub k: usize,
+    /// Time since the start of the mission, seconds.
     pub t: f64,
     /// "usv", "auv0", "auv1", …
     pub vehicle: String,
+    /// (x, y, z) in the planner's frame, metres (x east, y north, z up; the USV at z = 0).
     pub position: [f64; 3],
     /// In the grid's CRS (see [`Georef::to_crs`]).
     pub crs: Option<[f64; 2]>,

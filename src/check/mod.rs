@@ -172,6 +172,7 @@ pub struct FamilyResult {
     /// Smallest margin over every check of the family, in `unit` (+∞ when nothing was checked,
     /// −∞ when a check could not be evaluated).
     pub worst_margin: f64,
+    /// Unit of the margins and the tolerance, e.g. "m", "m/s", "rad/s", "relative", "problems".
     pub unit: &'static str,
     /// The family passes when worst_margin ≥ −tolerance.
     pub tolerance: f64,
@@ -182,6 +183,7 @@ pub struct FamilyResult {
 }
 
 impl FamilyResult {
+    /// True when `worst_margin` ≥ −`tolerance`.
     pub fn passed(&self) -> bool {
         self.worst_margin >= -self.tolerance
     }
@@ -190,9 +192,11 @@ impl FamilyResult {
 /// The objective terms of one window: as stored in the plan and as recomputed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectiveCheck {
+    /// The window's index in the plan, 0-based.
     pub window: usize,
     /// "final" or "step1".
     pub stage: &'static str,
+    /// The terms as recorded in the plan.
     pub stored: ObjectiveTerms,
     /// The final stage's total is not recomputed (NaN).
     pub recomputed: ObjectiveTerms,
@@ -201,13 +205,15 @@ pub struct ObjectiveCheck {
 /// Everything the checker found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CheckReport {
+    /// One result per constraint family, in the order of [`CheckReport::table`].
     pub families: Vec<FamilyResult>,
     /// Every structural problem found (the "structure" family shows the first).
     pub problems: Vec<String>,
     /// Per window: stored and recomputed objective terms.
     pub objectives: Vec<ObjectiveCheck>,
-    /// The fingerprint recorded in the plan and that of the floor checked against.
+    /// The fingerprint of the floor recorded in the plan.
     pub plan_fingerprint: String,
+    /// The fingerprint of the floor the plan was checked against (`Seafloor::fingerprint`).
     pub floor_fingerprint: String,
 }
 
@@ -370,26 +376,37 @@ fn fmt_num(v: f64) -> String {
 /// Errors of loading the floor a plan names.
 #[derive(Debug, Error)]
 pub enum CheckError {
+    /// Reading the floor's grid file failed.
     #[error("cannot read the seafloor {path}: {source}")]
     ReadFloor {
+        /// The file's path.
         path: PathBuf,
+        /// Why it could not be read.
         #[source]
         source: SeafloorError,
     },
+    /// Regenerating the synthetic floor from the plan's scenario failed.
     #[error(
         "cannot regenerate the synthetic seafloor (seed {seed}) from the plan's scenario: {source}"
     )]
     Synthetic {
+        /// The scenario's random seed (`plan.scenario.seed`).
         seed: u64,
+        /// Why the floor could not be made.
         #[source]
         source: SeafloorError,
     },
+    /// The plan's floor source is "file" but neither the plan's seafloor record nor its scenario
+    /// holds a path, and no floor was given explicitly.
     #[error(
         "the plan's seafloor source is \"file\" but it records no path; give the floor explicitly"
     )]
     NoFloorPath,
+    /// The plan's floor source (`plan.seafloor.source`) is neither "synthetic" nor "file"; holds
+    /// the recorded source.
     #[error("the plan's seafloor source \"{0}\" is neither \"synthetic\" nor \"file\"")]
     UnknownSource(String),
+    /// The loaded floor's fingerprint differs from the one the plan records.
     #[error(
         "this is not the floor the plan was made on: {origin} has fingerprint {found}, the plan \
          records {expected}"
@@ -397,7 +414,9 @@ pub enum CheckError {
     FingerprintMismatch {
         /// Where the floor came from (path or "the synthetic floor (seed …)").
         origin: String,
+        /// The fingerprint recorded in the plan.
         expected: String,
+        /// The fingerprint of the loaded floor.
         found: String,
     },
 }

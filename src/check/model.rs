@@ -32,8 +32,11 @@ const MAX_SUBSTEPS: usize = 1_000_000;
 /// Damping rates (1/s) computed from the scenario: surge, heave and yaw.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rates {
+    /// e_surge = −γ_vx / (m − γ_v̇x), 1/s; the rate of the x and y axes.
     pub surge: f64,
+    /// e_heave = −γ_vz / (m − γ_v̇z), 1/s; the rate of the z axis.
     pub heave: f64,
+    /// e_yaw = −γ_ωz / (J_z − N_ṙ), 1/s; the rate of the heading.
     pub yaw: f64,
 }
 
@@ -70,9 +73,13 @@ impl Rates {
 /// One step of one axis: p⁺ = p + a·v + b·u, v⁺ = c·v + d·u.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AxisStep {
+    /// Position gain of the velocity, seconds.
     pub a: f64,
+    /// Position gain of the input, s².
     pub b: f64,
+    /// Velocity gain of the velocity, dimensionless.
     pub c: f64,
+    /// Velocity gain of the input, seconds.
     pub d: f64,
 }
 
@@ -130,10 +137,13 @@ impl AxisStep {
 /// The checker's AUV model for one step of length δ.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AuvStep {
+    /// The steps of the x, y and z axes.
     pub axes: [AxisStep; 3],
 }
 
 impl AuvStep {
+    /// The step of length `dt` (seconds) for the per-axis damping rates `rates` \[x, y, z\]
+    /// (1/s, see [`Rates::axes`]): RK4 on the continuous model for `Zoh`, eq. (8) for `Euler`.
     pub fn new(rates: [f64; 3], dt: f64, kind: Discretisation) -> AuvStep {
         AuvStep {
             axes: rates.map(|e| match kind {

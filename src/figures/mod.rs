@@ -49,12 +49,22 @@ pub const FIGURES: [&str; 11] = [
 /// The metrics table's file stem (written after [`FIGURES`]).
 pub const TABLE: &str = "metrics";
 
+/// Errors of drawing and writing the figures.
 #[derive(Debug, Error)]
 pub enum FigureError {
+    /// Writing a figure's file (or creating its directory) failed.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// `plotters` failed to draw a figure.
     #[error("cannot draw figure {figure}: {why}")]
-    Draw { figure: &'static str, why: String },
+    Draw {
+        /// The figure's file stem, e.g. "final-top".
+        figure: &'static str,
+        /// The drawing backend's error message.
+        why: String,
+    },
+    /// The plan's arrays do not have the lengths the plan format promises (no windows, wrong
+    /// number of AUVs, not K + 1 states, …); holds what is wrong.
     #[error("cannot plot the plan: {0}")]
     Plan(String),
 }

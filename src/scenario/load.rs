@@ -33,63 +33,101 @@ pub enum ScenarioError {
     /// The file could not be read.
     #[error("{}: cannot read the scenario file: {source}", path.display())]
     Io {
+        /// The file's path.
         path: PathBuf,
+        /// The underlying I/O error.
         #[source]
         source: std::io::Error,
     },
     /// Not valid TOML (or not UTF-8).
     #[error("{source_name} line {line}, column {column}: {message}")]
     Syntax {
+        /// The file's path, or `embedded default`.
         source_name: String,
+        /// The line, 1-based.
         line: usize,
+        /// The column, 1-based, in characters.
         column: usize,
+        /// The TOML parser's message on one line, or that the file is not UTF-8.
         message: String,
     },
     /// A key that is not part of a scenario.
     #[error("{}: unknown key {key}; {allowed}", at(.source_name, .line))]
     UnknownKey {
+        /// Where the problem is: the file's path, `--set k=v` or `embedded default`.
         source_name: String,
+        /// The line in the file, 1-based; `None` for a `--set` override or when the problem has
+        /// no position (a rule broken by defaults alone).
         line: Option<usize>,
+        /// The unknown dotted key, up to its first unknown part.
         key: String,
+        /// The keys allowed in that section, e.g. "allowed keys in \[usv\]: …".
         allowed: String,
     },
     /// A value of the wrong TOML type.
     #[error("{}: {key}: expected {expected}, found {found}", at(.source_name, .line))]
     WrongType {
+        /// Where the problem is: the file's path, `--set k=v` or `embedded default`.
         source_name: String,
+        /// The line in the file, 1-based; `None` for a `--set` override or when the problem has
+        /// no position (a rule broken by defaults alone).
         line: Option<usize>,
+        /// The full dotted key, array elements as `key[i]` (e.g. `initial.auvs[2]`).
         key: String,
+        /// What the key takes, in words, e.g. "a number" or "an array of 2 numbers".
         expected: String,
+        /// What was given, in words, e.g. "a string" or "an array of 3 elements".
         found: String,
     },
     /// A required key is missing (only inside `[initial]`, where `usv` and `auvs` go together).
     #[error("{}: {key} is missing: {allowed}", at(.source_name, .line))]
     MissingKey {
+        /// Where the problem is: the file's path, `--set k=v` or `embedded default`.
         source_name: String,
+        /// The line in the file, 1-based; `None` for a `--set` override or when the problem has
+        /// no position (a rule broken by defaults alone).
         line: Option<usize>,
+        /// The full dotted key, array elements as `key[i]` (e.g. `initial.auvs[2]`).
         key: String,
+        /// How to give it ("give it as …"), or "it is required here".
         allowed: String,
     },
     /// A value of the right type outside its allowed range.
     #[error("{}: {key} = {value}: {allowed}", at(.source_name, .line))]
     OutOfRange {
+        /// Where the problem is: the file's path, `--set k=v` or `embedded default`.
         source_name: String,
+        /// The line in the file, 1-based; `None` for a `--set` override or when the problem has
+        /// no position (a rule broken by defaults alone).
         line: Option<usize>,
+        /// The full dotted key, array elements as `key[i]` (e.g. `initial.auvs[2]`).
         key: String,
+        /// The value as written for a person ("(default)" appended when the key was not set).
         value: String,
+        /// What is allowed, e.g. "must be a positive number …" or "must be one of …".
         allowed: String,
     },
     /// Any other deserialisation failure (kept with its message; not expected in practice).
     #[error("{}: {key}: {message}", at(.source_name, .line))]
     Invalid {
+        /// Where the problem is: the file's path, `--set k=v` or `embedded default`.
         source_name: String,
+        /// The line in the file, 1-based; `None` for a `--set` override or when the problem has
+        /// no position (a rule broken by defaults alone).
         line: Option<usize>,
+        /// The full dotted key, array elements as `key[i]` (e.g. `initial.auvs[2]`).
         key: String,
+        /// The deserialiser's message, on one line.
         message: String,
     },
     /// A `--set` argument that is not `dotted.key=value`.
     #[error("--set {text}: {why}")]
-    BadOverride { text: String, why: String },
+    BadOverride {
+        /// The argument as given, without `--set`.
+        text: String,
+        /// What is wrong with it.
+        why: String,
+    },
 }
 
 fn at(source_name: &str, line: &Option<usize>) -> String {

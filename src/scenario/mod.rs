@@ -27,18 +27,27 @@ pub struct Scenario {
     pub seed: u64,
     /// Number of receding-horizon windows planned one after another (Algorithm 1, for_1).
     pub windows: usize,
+    /// `[team]`: the AUV group.
     pub team: Team,
+    /// `[horizon]`: steps per window and sampling time.
     pub horizon: Horizon,
+    /// `[acoustic]`: sonar range, link bands and line-of-sight sampling.
     pub acoustic: Acoustic,
+    /// `[auv]`: AUV limits and the coefficients of the dynamics, eqs. (5)–(8).
     pub auv: Auv,
+    /// `[usv]`: the USV's speed limit and objective.
     pub usv: Usv,
+    /// `[weights]`: weights of the objective OF1.
     pub weights: Weights,
+    /// `[seafloor]`: a grid file or the synthetic floor.
     pub seafloor: SeafloorSpec,
+    /// `[scp]`: settings of the sequential convex programming solver of P2 and P5.
     pub scp: Scp,
     /// Explicit initial state; when absent it is drawn from `seed` (Algorithm 1, line 5).
     pub initial: Option<Initial>,
 }
 
+/// The AUV group 𝒢 = {1, …, N}.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Team {
@@ -46,6 +55,7 @@ pub struct Team {
     pub auvs: usize,
 }
 
+/// The receding horizon: K steps of δ seconds per window.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Horizon {
@@ -55,6 +65,8 @@ pub struct Horizon {
     pub dt: f64,
 }
 
+/// Acoustic links, A2U (AUV–USV) and A2A (AUV–AUV): range, link-length bands and
+/// line-of-sight sampling.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Acoustic {
@@ -74,6 +86,7 @@ pub struct Acoustic {
     pub los_rounds: usize,
 }
 
+/// How the AUV dynamics are discretised over a step of δ seconds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Discretisation {
@@ -83,6 +96,9 @@ pub enum Discretisation {
     Euler,
 }
 
+/// AUV limits and the coefficients of the simplified dynamics, eqs. (5)–(8) (defaults: REMUS
+/// 100). Hydrodynamic coefficients follow Fossen's sign convention: added masses and dampings
+/// are ≤ 0.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Auv {
@@ -99,6 +115,7 @@ pub struct Auv {
     /// Width of the seafloor swath each AUV's sensor covers (side-scan / multibeam), metres;
     /// used for the explored-area metric only.
     pub swath_width: f64,
+    /// Exact zero-order hold of eqs. (5)–(7) or the paper's forward Euler, eq. (8).
     pub discretisation: Discretisation,
     /// m, rigid-body mass, kg.
     pub mass: f64,
@@ -118,6 +135,7 @@ pub struct Auv {
     pub damping_yaw: f64,
 }
 
+/// What the USV's objective term rewards: OF1_8 or OF1_8_2.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum UsvObjective {
@@ -127,11 +145,14 @@ pub enum UsvObjective {
     Destination,
 }
 
+/// The USV (mother ship) at the surface, eq. (9): P_USV\[k+1\] = P_USV\[k\] + δ·U_USV\[k\].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Usv {
     /// Speed limit of eq. (9)'s velocity input, m/s.
     pub max_speed: f64,
+    /// OF1_8 (move away from the start, weight w8) or OF1_8_2 (go towards `destination`,
+    /// weight w8_2).
     pub objective: UsvObjective,
     /// P_USV[∞] of OF1_8_2, metres (x east, y north). Used when objective = "destination".
     pub destination: [f64; 2],
@@ -152,6 +173,7 @@ pub enum DepthObjective {
     Depth,
 }
 
+/// Weights w1..w8 of the objective OF1 (problem P1) and w8_2 of OF1_8_2; all ≥ 0.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Weights {
@@ -195,9 +217,12 @@ pub struct SeafloorSpec {
     /// The grid file's CRS, `"EPSG:<code>"`: for a file that has none (ESRI ASCII without a .prj
     /// sidecar), or to assert a file's own (a conflict is an error).
     pub crs: Option<String>,
+    /// The synthetic floor (Fig. 4(a)), generated from `seed` when `file` is absent.
     pub synthetic: crate::seafloor::SyntheticParams,
 }
 
+/// Sequential convex programming (trust region) that solves the nonconvex P2 (Step 1) and P5
+/// (Step 3).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Scp {
@@ -217,6 +242,7 @@ pub struct Scp {
     pub penalty: f64,
 }
 
+/// An explicit initial state (Algorithm 1, lines 4–5).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Initial {

@@ -9,9 +9,13 @@ use super::Scenario;
 /// whichever of `key` and `related` was set last, since that is the setting that broke the rule.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Violation {
+    /// The dotted key at fault, array elements as `key[i]`.
     pub key: String,
+    /// Its value, as written for a person.
     pub value: String,
+    /// What is allowed, e.g. "must be a positive number …".
     pub allowed: String,
+    /// Other dotted keys the rule involves.
     pub related: Vec<String>,
 }
 

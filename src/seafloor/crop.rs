@@ -37,9 +37,11 @@ pub enum CropRegion {
 /// How to export a grid file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExportOptions {
+    /// The sign convention of the file's values (depths are negated).
     pub values: Values,
     /// A declared CRS, as `seafloor.crs` (`"EPSG:<code>"`).
     pub crs: Option<String>,
+    /// The part of the grid to export.
     pub region: CropRegion,
     /// Resample onto cells of this size, metres (see the module docs); None: crop only.
     pub cell: Option<f64>,
@@ -61,8 +63,12 @@ impl Default for ExportOptions {
 pub struct ExportedGrid {
     /// Node coordinates in the CRS's units (degrees for a geographic grid), elevations.
     pub floor: Seafloor,
+    /// The grid's CRS: the file's own, or the declared one.
     pub crs: Crs,
+    /// Where `crs` came from.
     pub crs_source: CrsSource,
+    /// Likely mistakes and assumptions found while reading the file (e.g. a datum taken as
+    /// WGS84).
     pub warnings: Vec<String>,
 }
 

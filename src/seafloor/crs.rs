@@ -43,7 +43,10 @@ pub enum CrsSource {
     Declared,
     /// Nothing gives one: the coordinates are taken as metres. `looks_like_degrees`: the
     /// coordinates would fit a grid in degrees.
-    Guessed { looks_like_degrees: bool },
+    Guessed {
+        /// True when the coordinates would fit a grid in degrees.
+        looks_like_degrees: bool,
+    },
 }
 
 impl std::fmt::Display for CrsSource {

@@ -18,10 +18,15 @@ use tiff::tags::{SampleFormat, Tag};
 /// The sample type written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SampleType {
+    /// 32-bit IEEE float (values rounded); NODATA −99999.
     Float32,
+    /// 64-bit IEEE float; NODATA −99999.
     Float64,
+    /// Signed 16-bit integer, values −32767 to 32767; NODATA −32768.
     Int16,
+    /// Signed 32-bit integer; NODATA −99999.
     Int32,
+    /// Unsigned 16-bit integer, values 0 to 65534; NODATA 65535.
     UInt16,
 }
 
@@ -41,24 +46,35 @@ impl SampleType {
 pub enum TiffLayout {
     /// Strips of `rows` rows (0: about 64 KiB each).
     Strips {
+        /// Rows per strip; 0 picks about 64 KiB per strip.
         rows: u32,
+        /// How each strip is compressed.
         compression: TiffCompression,
     },
     /// Square tiles of `size` pixels (a multiple of 16), uncompressed.
-    Tiles { size: u32 },
+    Tiles {
+        /// The tile's side, pixels (a multiple of 16; at least 16).
+        size: u32,
+    },
 }
 
+/// The compression of a strip layout.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TiffCompression {
+    /// Uncompressed.
     None,
+    /// Deflate (zlib), balanced level.
     Deflate,
+    /// LZW.
     Lzw,
 }
 
 /// What [`write_geotiff`] writes, besides the nodes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GeoTiffOptions {
+    /// The sample type of the band.
     pub sample: SampleType,
+    /// Strips or tiles, and the compression.
     pub layout: TiffLayout,
     /// Written as GTCitationGeoKey (e.g. what a user-defined CRS is).
     pub citation: Option<String>,

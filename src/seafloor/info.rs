@@ -10,11 +10,14 @@ use std::path::Path;
 /// What [`info`] finds in a grid file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GridInfo {
+    /// The file's path.
     pub path: String,
+    /// The file format, from the file name's extension.
     pub format: GridFormat,
     /// The GDAL driver that reads the file ("netCDF: Network Common Data Format"), for a file
     /// read through GDAL.
     pub driver: Option<String>,
+    /// The grid's CRS: the file's own, or the declared one.
     pub crs: Crs,
     /// Where `crs` came from.
     pub crs_source: CrsSource,
@@ -26,8 +29,11 @@ pub struct GridInfo {
     /// y_max], metres, for a geographic grid within the frame's range; the native extent for
     /// metric grids.
     pub metric_extent: Option<[f64; 4]>,
+    /// The sign convention the values were read with.
     pub values: Values,
+    /// Number of nodes holding a value.
     pub data_nodes: usize,
+    /// Number of NODATA nodes.
     pub nodata_nodes: usize,
     /// Data nodes at or above sea level (after the sign convention).
     pub land_nodes: usize,

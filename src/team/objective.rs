@@ -19,13 +19,13 @@ use crate::trajectory::Trajectory;
 /// The unweighted objective terms for a trajectory (P2's, plus P5's when links are set).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Terms {
-    /// OF1_1: Σ ‖U_n[k]‖², (m/s²)².
+    /// OF1_1: Σ ‖U_n\[k\]‖², (m/s²)².
     pub energy: f64,
     /// Σ z.
     pub depth: f64,
     /// Σ (z − Z(x, y)).
     pub height: f64,
-    /// OF1_8 (−‖P_USV[K] − P_USV[0]‖²) or OF1_8_2 (‖P_USV[K] − P∞‖²), m².
+    /// OF1_8 (−‖P_USV\[K\] − P_USV\[0\]‖²) or OF1_8_2 (‖P_USV\[K\] − P∞‖²), m².
     pub usv: f64,
     /// OF1_5: Σ_k Σ ‖P_i − P_j‖² over pairs not joined by an A2A edge at k, m².
     pub spread: f64,

@@ -29,16 +29,27 @@ const THREE_LICENSE: &str = include_str!("../../assets/three/LICENSE");
 /// resolves (a module loaded from a blob URL cannot import relative paths).
 const CORE_IMPORT: &str = "\"./three.core.min.js\"";
 
+/// Errors of building and writing the viewer page.
 #[derive(Debug, Error)]
 pub enum ViewerError {
+    /// The plan cannot be shown: no windows, or a window's final stage has missing, non-finite
+    /// or inconsistent positions or links; holds what is wrong.
     #[error("cannot show the plan: {0}")]
     Plan(String),
+    /// Writing the HTML file failed.
     #[error(transparent)]
     Write(#[from] crate::output::OutputError),
+    /// Serialising the viewer data to JSON failed.
     #[error("cannot serialise the viewer data: {0}")]
     Json(#[from] serde_json::Error),
+    /// The output path cannot be written to (it is a directory).
     #[error("cannot write {path}: {why}")]
-    Path { path: PathBuf, why: String },
+    Path {
+        /// The output path.
+        path: PathBuf,
+        /// Why it cannot be written to.
+        why: String,
+    },
 }
 
 /// Write the viewer of `plan` (on the floor it was planned on) to `out`, atomically.

@@ -4,7 +4,7 @@
 use super::{finish, HamiltonianPath, Weights};
 use std::collections::{HashSet, VecDeque};
 
-/// Heuristic for P4, used beyond [`EXACT_MAX`] (works for any N). For each start node s, in
+/// Heuristic for P4, used beyond `EXACT_MAX` (works for any N). For each start node s, in
 /// increasing order: a greedy path from s that repeatedly appends, at either end, the unvisited
 /// node farthest from that end; each distinct greedy path is then improved by local search until
 /// no move gains more than 1e-12 × (largest edge weight):
