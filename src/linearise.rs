@@ -110,6 +110,7 @@ pub fn spread(d_ref: [f64; 3]) -> (f64, [f64; 3]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::seafloor::Lattice;
     use proptest::prelude::*;
     use std::sync::OnceLock;
 
@@ -215,7 +216,7 @@ mod tests {
             for (i, j) in holes {
                 nodata[j * nx + i] = true;
             }
-            let field = Seafloor::from_nodes(nx, ny, 0.0, 0.0, d, d, z, nodata)
+            let field = Seafloor::from_nodes(Lattice::new(nx, ny, 0.0, 0.0, d, d), z, nodata)
                 .unwrap()
                 .keep_out();
             let at = |u: [f64; 3]| [u[0] * 220.0, u[1] * 180.0, -100.0 * u[2]];

@@ -388,6 +388,7 @@ impl<'a> StepGraph<'a> {
 mod tests {
     use super::*;
     use crate::plan::{AuvPath, ObjectiveTerms, UsvPath};
+    use crate::seafloor::Lattice;
 
     const P: MetricParams = MetricParams {
         dt: 10.0,
@@ -401,7 +402,12 @@ mod tests {
     fn floor(ridge: f64) -> Seafloor {
         let (n, d, o) = (41, 10.0, -200.0);
         let z = (0..n * n).map(|k| if k % n == 20 { ridge } else { -100.0 });
-        Seafloor::from_nodes(n, n, o, o, d, d, z.collect(), vec![false; n * n]).unwrap()
+        Seafloor::from_nodes(
+            Lattice::new(n, n, o, o, d, d),
+            z.collect(),
+            vec![false; n * n],
+        )
+        .unwrap()
     }
 
     /// At rest (zero velocity and inputs, no heading) at each position.
@@ -578,12 +584,7 @@ mod tests {
         let mut nodata = vec![false; n * n];
         nodata[21 * n + 20] = true;
         let f = Seafloor::from_nodes(
-            n,
-            n,
-            -200.0,
-            -200.0,
-            10.0,
-            10.0,
+            Lattice::new(n, n, -200.0, -200.0, 10.0, 10.0),
             vec![-100.0; n * n],
             nodata,
         )

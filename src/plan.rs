@@ -39,14 +39,10 @@ pub struct SeafloorRecord {
     pub source: String,
     /// Path of the grid file when source = "file".
     pub path: Option<String>,
-    pub nx: usize,
-    pub ny: usize,
-    /// Centre of the south-west grid node, metres.
-    pub x0: f64,
-    pub y0: f64,
-    /// Node spacing, metres.
-    pub dx: f64,
-    pub dy: f64,
+    /// The grid's nodes, metres: `nx`, `ny`, the centre of the south-west node (`x0`, `y0`)
+    /// and the spacing (`dx`, `dy`), written as those six fields of the record.
+    #[serde(flatten)]
+    pub lattice: crate::seafloor::Lattice,
     /// Shallowest and deepest node elevation, metres.
     pub z_min: f64,
     pub z_max: f64,

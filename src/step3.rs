@@ -196,7 +196,8 @@ mod tests {
                 }
             })
             .collect();
-        Seafloor::from_nodes(n, n, x0, x0, c, c, z, vec![false; n * n]).unwrap()
+        let lattice = crate::seafloor::Lattice::new(n, n, x0, x0, c, c);
+        Seafloor::from_nodes(lattice, z, vec![false; n * n]).unwrap()
     }
 
     /// Two AUVs at −60 m on either side of the ridge, the USV above AUV 0; one step.
@@ -237,7 +238,8 @@ mod tests {
         let (n, c, x0) = (41usize, 25.0, -500.0);
         let mut nodata = vec![false; n * n];
         nodata[21 * n + 20] = true;
-        let floor = Seafloor::from_nodes(n, n, x0, x0, c, c, vec![-100.0; n * n], nodata).unwrap();
+        let lattice = crate::seafloor::Lattice::new(n, n, x0, x0, c, c);
+        let floor = Seafloor::from_nodes(lattice, vec![-100.0; n * n], nodata).unwrap();
         let (t, set) = team();
         let blocked = blocked_links(&floor, &floor.keep_out(), &set, &t, 5.0);
         assert_eq!(blocked.len(), 1, "{blocked:?}");

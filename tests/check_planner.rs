@@ -4,7 +4,7 @@
 use shoal::check::check_plan;
 use shoal::mission::{scenario_floor, FloorSource};
 use shoal::scenario::Scenario;
-use shoal::seafloor::Seafloor;
+use shoal::seafloor::{Lattice, Seafloor};
 
 /// Plan `s` over `f` (the test's own floor, recorded as a file floor).
 fn plan_on(s: &Scenario, f: &Seafloor, source: FloorSource) -> shoal::plan::Plan {
@@ -33,7 +33,7 @@ fn floor() -> Seafloor {
             z.push(v);
         }
     }
-    Seafloor::from_nodes(n, n, x0, x0, c, c, z, vec![false; n * n]).unwrap()
+    Seafloor::from_nodes(Lattice::new(n, n, x0, x0, c, c), z, vec![false; n * n]).unwrap()
 }
 
 #[test]
@@ -65,12 +65,7 @@ fn the_planners_plan_passes_the_check() {
 fn flat_floor_plan_matches_the_closed_form_optimum() {
     let n = 121usize;
     let f = Seafloor::from_nodes(
-        n,
-        n,
-        -3000.0,
-        -3000.0,
-        50.0,
-        50.0,
+        Lattice::new(n, n, -3000.0, -3000.0, 50.0, 50.0),
         vec![-140.0; n * n],
         vec![false; n * n],
     )

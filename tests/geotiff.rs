@@ -7,8 +7,8 @@ mod common;
 use common::*;
 use shoal::seafloor::geo::LocalFrame;
 use shoal::seafloor::{
-    info, load, Crs, LoadOptions, Region, SampleType, Seafloor, SeafloorError, TiffCompression,
-    TiffLayout, Values,
+    info, load, Crs, Lattice, LoadOptions, Region, SampleType, Seafloor, SeafloorError,
+    TiffCompression, TiffLayout, Values,
 };
 
 #[test]
@@ -119,8 +119,12 @@ fn float32_rounds_other_values_and_seafloor_export_is_lossless() {
         reference.fingerprint()
     );
     // an odd origin (no exact corner form) is written as PixelIsPoint, still exact
-    let odd =
-        Seafloor::from_nodes(3, 2, 0.1, 0.7, 0.3, 0.3, vec![-1.0; 6], vec![false; 6]).unwrap();
+    let odd = Seafloor::from_nodes(
+        Lattice::new(3, 2, 0.1, 0.7, 0.3, 0.3),
+        vec![-1.0; 6],
+        vec![false; 6],
+    )
+    .unwrap();
     let p = dir.path().join("odd.tif");
     odd.write_geotiff(&p, &Crs::None, None).unwrap();
     assert_eq!(load(&p, &LoadOptions::default()).unwrap().floor, odd);

@@ -32,7 +32,7 @@ fn carved(holes: &[Disc], islands: &[Disc]) -> Seafloor {
             }
         }
     }
-    Seafloor::from_nodes(f.nx(), f.ny(), f.x0(), f.y0(), f.dx(), f.dy(), z, nodata).unwrap()
+    Seafloor::from_nodes(f.lattice(), z, nodata).unwrap()
 }
 
 /// The default scenario over the grid file `floor`, plus `extra` overrides.

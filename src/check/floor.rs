@@ -26,13 +26,14 @@ impl Checker<'_> {
             }
         });
         let (z_min, z_max) = self.floor.z_range();
+        let l = &r.lattice;
         for (name, plan, floor) in [
-            ("nx", r.nx as f64, self.floor.nx() as f64),
-            ("ny", r.ny as f64, self.floor.ny() as f64),
-            ("x0", r.x0, self.floor.x0()),
-            ("y0", r.y0, self.floor.y0()),
-            ("dx", r.dx, self.floor.dx()),
-            ("dy", r.dy, self.floor.dy()),
+            ("nx", l.nx as f64, self.floor.nx() as f64),
+            ("ny", l.ny as f64, self.floor.ny() as f64),
+            ("x0", l.x0, self.floor.x0()),
+            ("y0", l.y0, self.floor.y0()),
+            ("dx", l.dx, self.floor.dx()),
+            ("dy", l.dy, self.floor.dy()),
             ("z_min", r.z_min, z_min),
             ("z_max", r.z_max, z_max),
         ] {

@@ -438,11 +438,12 @@ pub fn load_floor(plan: &Plan, override_path: Option<&Path>) -> Result<Seafloor,
             crs: plan.scenario.seafloor.crs.clone(),
             region,
         };
+        let l = &rec.lattice;
         let window = Region::Nodes {
-            x0: rec.x0,
-            y0: rec.y0,
-            nx: rec.nx,
-            ny: rec.ny,
+            x0: l.x0,
+            y0: l.y0,
+            nx: l.nx,
+            ny: l.ny,
         };
         match load(path, &opts(window)) {
             Err(SeafloorError::Region { .. }) => load(path, &opts(Region::All)),

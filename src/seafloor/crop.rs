@@ -19,8 +19,8 @@
 
 use super::crs::CrsSource;
 use super::geo::LocalFrame;
-use super::load::{apply, Crs, Lattice, NodeWindow, OpenedGrid, Values, MAX_LOAD_NODES};
-use super::{Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
+use super::load::{apply, Crs, NodeWindow, OpenedGrid, Values, MAX_LOAD_NODES};
+use super::{Lattice, Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
 use std::path::Path;
 
 /// Which part of a grid to export.
@@ -155,17 +155,8 @@ pub fn export_grid(path: &Path, opts: &ExportOptions) -> Result<ExportedGrid, Se
     let (mut z, nodata) = file.read(w)?;
     apply(opts.values, &mut z);
     let all_nodata = || fail(option, "every node of the region is NODATA".to_string());
-    let source = Seafloor::from_nodes(
-        w.nx,
-        w.ny,
-        native.x0 + i0 as f64 * sx,
-        native.y0 + j0 as f64 * sy,
-        sx,
-        sy,
-        z,
-        nodata,
-    )
-    .map_err(|e| nodata_error(e, all_nodata))?;
+    let source = Seafloor::from_nodes(native.block(w), z, nodata)
+        .map_err(|e| nodata_error(e, all_nodata))?;
     let floor = match spacing {
         None => cut(&source, &target),
         Some(_) => resample_onto(&source, &target),
@@ -344,17 +335,14 @@ fn cut(src: &Seafloor, target: &Lattice) -> Result<Seafloor, SeafloorError> {
             ny: target.ny,
         },
     );
-    Seafloor::from_nodes(
-        target.nx, target.ny, target.x0, target.y0, target.dx, target.dy, z, nd,
-    )
+    Seafloor::from_nodes(*target, z, nd)
 }
 
 /// The source resampled onto `target` (inside the source's extent): bilinear values, and the
 /// obstacle rule of the module docs.
 fn resample_onto(src: &Seafloor, target: &Lattice) -> Result<Seafloor, SeafloorError> {
     let (nx, ny) = (target.nx, target.ny);
-    let x = |i: usize| target.x0 + i as f64 * target.dx;
-    let y = |j: usize| target.y0 + j as f64 * target.dy;
+    let s = src.lattice();
     let rx = src.dx().max(target.dx) * (1.0 - 1e-9);
     let ry = src.dy().max(target.dy) * (1.0 - 1e-9);
     let mut nodata = vec![false; nx * ny];
@@ -370,8 +358,7 @@ fn resample_onto(src: &Seafloor, target: &Lattice) -> Result<Seafloor, SeafloorE
         if !(m || v >= 0.0) {
             continue;
         }
-        let qx = src.x0() + (k % src.nx()) as f64 * src.dx();
-        let qy = src.y0() + (k / src.nx()) as f64 * src.dy();
+        let (qx, qy) = (s.x(k % s.nx), s.y(k / s.nx));
         for j in near(qy, ry, target.y0, target.dy, ny) {
             for i in near(qx, rx, target.x0, target.dx, nx) {
                 let t = j * nx + i;
@@ -392,13 +379,12 @@ fn resample_onto(src: &Seafloor, target: &Lattice) -> Result<Seafloor, SeafloorE
                 continue;
             }
             // inside the source's extent by construction; clamp the last ulp
-            let v = src.elevation(x(i).clamp(e.x_min, e.x_max), y(j).clamp(e.y_min, e.y_max))?;
+            let (x, y) = (target.x(i), target.y(j));
+            let v = src.elevation(x.clamp(e.x_min, e.x_max), y.clamp(e.y_min, e.y_max))?;
             z[t] = if land[t] { v.max(0.0) } else { v };
         }
     }
-    Seafloor::from_nodes(
-        nx, ny, target.x0, target.y0, target.dx, target.dy, z, nodata,
-    )
+    Seafloor::from_nodes(*target, z, nodata)
 }
 
 #[cfg(test)]

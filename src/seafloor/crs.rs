@@ -28,8 +28,8 @@ pub(crate) use wkt::crs_of_wkt;
 pub use wkt::wkt_of;
 
 use super::geokeys::check_lattice;
-use super::load::{Crs, GridFormat, Lattice};
-use super::SeafloorError;
+use super::load::{Crs, GridFormat};
+use super::{Lattice, SeafloorError};
 use std::path::{Path, PathBuf};
 
 /// Where a grid's CRS came from.

@@ -9,7 +9,7 @@
 //! match rows). A corner is the outer corner of the south-west cell, so the south-west node is at
 //! corner + cellsize/2; a centre is the node itself.
 
-use super::{Seafloor, SeafloorError, MAX_ABS_ELEVATION, MAX_NODES_PER_AXIS};
+use super::{Lattice, Seafloor, SeafloorError, MAX_ABS_ELEVATION, MAX_NODES_PER_AXIS};
 use std::collections::HashMap;
 use std::io::Write;
 use std::iter::Peekable;
@@ -55,7 +55,7 @@ impl Seafloor {
         let p = Parser { source_name };
         let h = p.header_of(&mut lines)?;
         let (z, nodata) = p.data(lines, &h)?;
-        Seafloor::from_nodes(h.nx, h.ny, h.x0, h.y0, h.dx, h.dy, z, nodata)
+        Seafloor::from_nodes(h.lattice, z, nodata)
     }
 
     /// The grid as ESRI ASCII text. Square cells are written with `cellsize`, others with `dx`
@@ -130,12 +130,8 @@ pub(crate) fn window(f: &Seafloor, w: super::NodeWindow) -> (Vec<f64>, Vec<bool>
 
 /// What the header says.
 struct Header {
-    nx: usize,
-    ny: usize,
-    x0: f64,
-    y0: f64,
-    dx: f64,
-    dy: f64,
+    /// ncols, nrows, the south-west node and the cell size.
+    lattice: Lattice,
     /// NODATA_value and its line.
     nodata: Option<(f64, usize)>,
     /// The first line after the header.
@@ -220,12 +216,14 @@ impl Parser<'_> {
             },
         };
         Ok(Header {
-            nx,
-            ny,
-            x0,
-            y0,
-            dx,
-            dy,
+            lattice: Lattice {
+                nx,
+                ny,
+                x0,
+                y0,
+                dx,
+                dy,
+            },
             nodata,
             end,
         })
@@ -239,7 +237,7 @@ impl Parser<'_> {
         lines: impl Iterator<Item = (usize, &'t str)>,
         h: &Header,
     ) -> Result<(Vec<f64>, Vec<bool>), SeafloorError> {
-        let (nx, ny) = (h.nx, h.ny);
+        let (nx, ny) = (h.lattice.nx, h.lattice.ny);
         let expected = nx * ny; // ≤ 2.5e9 by the count bounds
         let count_error = |line: usize, found: usize, reason: String| SeafloorError::DataCount {
             source_name: self.source_name.to_string(),
@@ -471,8 +469,12 @@ mod tests {
             .unwrap()
             .to_esri_ascii()
             .contains("xllcorner 1000\nyllcorner 2000\n"));
-        let f =
-            Seafloor::from_nodes(2, 2, 0.1, 0.7, 0.3, 0.3, vec![-1.0; 4], vec![false; 4]).unwrap();
+        let f = Seafloor::from_nodes(
+            Lattice::new(2, 2, 0.1, 0.7, 0.3, 0.3),
+            vec![-1.0; 4],
+            vec![false; 4],
+        )
+        .unwrap();
         let written = f.to_esri_ascii();
         let g = parse(&written).unwrap();
         assert_eq!(

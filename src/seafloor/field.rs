@@ -18,17 +18,18 @@ impl Seafloor {
                 extent: self.extent(),
             });
         }
-        let (i, t) = axis((x - self.x0) / self.dx, self.nx);
-        let (j, s) = axis((y - self.y0) / self.dy, self.ny);
-        let k = j * self.nx + i;
+        let l = &self.lattice;
+        let (i, t) = axis((x - l.x0) / l.dx, l.nx);
+        let (j, s) = axis((y - l.y0) / l.dy, l.ny);
+        let k = l.index(i, j);
         Ok(Cell {
             k,
             t,
             s,
             z00: self.z[k],
             z10: self.z[k + 1],
-            z01: self.z[k + self.nx],
-            z11: self.z[k + self.nx + 1],
+            z01: self.z[k + l.nx],
+            z11: self.z[k + l.nx + 1],
         })
     }
 
@@ -42,8 +43,8 @@ impl Seafloor {
     /// point on a cell edge belongs to).
     pub fn elevation_and_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), SeafloorError> {
         let c = self.locate(x, y)?;
-        let gx = ((1.0 - c.s) * (c.z10 - c.z00) + c.s * (c.z11 - c.z01)) / self.dx;
-        let gy = ((1.0 - c.t) * (c.z01 - c.z00) + c.t * (c.z11 - c.z10)) / self.dy;
+        let gx = ((1.0 - c.s) * (c.z10 - c.z00) + c.s * (c.z11 - c.z01)) / self.lattice.dx;
+        let gy = ((1.0 - c.t) * (c.z01 - c.z00) + c.t * (c.z11 - c.z10)) / self.lattice.dy;
         Ok((c.value(), [gx, gy]))
     }
 
@@ -51,7 +52,7 @@ impl Seafloor {
     /// (z ≥ 0).
     pub fn is_obstacle(&self, x: f64, y: f64) -> Result<bool, SeafloorError> {
         let c = self.locate(x, y)?;
-        let nx = self.nx;
+        let nx = self.lattice.nx;
         Ok([c.k, c.k + 1, c.k + nx, c.k + nx + 1]
             .iter()
             .any(|&k| self.nodata[k] || self.z[k] >= 0.0))
@@ -61,7 +62,7 @@ impl Seafloor {
     /// land node (z ≥ 0); `at_point` is the floor's elevation at (x, y) itself.
     pub fn obstacle(&self, x: f64, y: f64) -> Result<Option<Obstacle>, SeafloorError> {
         let c = self.locate(x, y)?;
-        let nx = self.nx;
+        let nx = self.lattice.nx;
         let ks = [c.k, c.k + 1, c.k + nx, c.k + nx + 1];
         if ks.iter().any(|&k| self.nodata[k]) {
             return Ok(Some(Obstacle::Nodata));

@@ -22,8 +22,8 @@
 //! its warnings while opening the file become the grid's warnings.
 
 use super::geokeys::check_lattice;
-use super::load::{Crs, Lattice, NodeWindow, MAX_LOAD_NODES};
-use super::SeafloorError;
+use super::load::{Crs, NodeWindow, MAX_LOAD_NODES};
+use super::{Lattice, SeafloorError};
 use gdal::errors::{CplErrType, GdalError};
 use gdal::raster::GdalDataType;
 use gdal::{Dataset, DatasetOptions, GdalOpenFlags, Metadata};

@@ -1,7 +1,8 @@
 //! GeoTIFF georeferencing: the GeoKeyDirectory (the CRS and the raster type) and the tags that
 //! place the grid (ModelPixelScale + ModelTiepoint, or ModelTransformation).
 
-use super::load::{Crs, Lattice};
+use super::load::Crs;
+use super::Lattice;
 
 /// Largest |coordinate| of a GeoTIFF's georeferencing, as for ESRI ASCII headers.
 const MAX_COORDINATE: f64 = 1e12;
@@ -91,8 +92,7 @@ pub(crate) fn georeference(
 
 /// The lattice must be finite, within ±1e12, and (for degrees) on the globe.
 pub(crate) fn check_lattice(l: &Lattice, crs: &Crs) -> Result<(), String> {
-    let x1 = l.x0 + (l.nx - 1) as f64 * l.dx;
-    let y1 = l.y0 + (l.ny - 1) as f64 * l.dy;
+    let (x1, y1) = (l.x_max(), l.y_max());
     let all = [l.x0, l.y0, x1, y1, l.dx, l.dy];
     if !all
         .iter()

@@ -18,8 +18,8 @@
 //! them.
 
 use super::geokeys::{check_lattice, georeference, key, GeoKeys};
-use super::load::{Crs, Lattice, NodeWindow};
-use super::SeafloorError;
+use super::load::{Crs, NodeWindow};
+use super::{Lattice, SeafloorError};
 use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;

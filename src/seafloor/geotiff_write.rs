@@ -6,8 +6,8 @@
 //! that gives the node back bit-exactly), so that reading a written grid gives the same node
 //! positions bit for bit.
 
-use super::load::{Crs, Lattice};
-use super::{Seafloor, SeafloorError};
+use super::load::Crs;
+use super::{Lattice, Seafloor, SeafloorError};
 use std::io::{BufWriter, Seek, Write};
 use std::path::Path;
 use tiff::encoder::{

@@ -2,8 +2,8 @@
 
 use super::crs::CrsSource;
 use super::geo::LocalFrame;
-use super::load::{frame_for, sign_warning, Crs, GridFormat, Lattice, OpenedGrid, Values};
-use super::SeafloorError;
+use super::load::{frame_for, sign_warning, Crs, GridFormat, OpenedGrid, Values};
+use super::{Lattice, SeafloorError};
 use std::fmt;
 use std::path::Path;
 
@@ -135,7 +135,7 @@ fn footprint(frame: &LocalFrame, n: &Lattice) -> Option<[f64; 4]> {
         f64::NEG_INFINITY,
     ];
     let mut visit = |i: usize, j: usize| {
-        let (lon, lat) = (n.x0 + i as f64 * n.dx, n.y0 + j as f64 * n.dy);
+        let (lon, lat) = (n.x(i), n.y(j));
         if !frame.within_range(lat, lon) {
             return false;
         }
@@ -171,7 +171,7 @@ impl fmt::Display for GridInfo {
             "size        {} × {} nodes ({} nodes)",
             n.nx,
             n.ny,
-            n.nx * n.ny
+            n.node_count()
         )?;
         let geographic = matches!(self.crs, Crs::Geographic { .. });
         let kind = match self.crs {
@@ -247,7 +247,7 @@ impl fmt::Display for GridInfo {
             )?,
             None => writeln!(f, "elevation   no data")?,
         }
-        let pct = |k: usize| 100.0 * k as f64 / (n.nx * n.ny).max(1) as f64;
+        let pct = |k: usize| 100.0 * k as f64 / n.node_count().max(1) as f64;
         writeln!(
             f,
             "nodes       {} with data, {} NODATA ({:.2} %), {} land (z ≥ 0, {:.2} %)",

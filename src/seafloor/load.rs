@@ -24,34 +24,13 @@ use super::crs::{resolve, CrsSource};
 use super::esri_ascii;
 use super::geo::{LocalFrame, MAX_FRAME_DISTANCE};
 use super::geotiff::TiffGrid;
-use super::{Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
+use super::{Lattice, Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// Largest number of nodes loaded at once (about 3.6 GB of values and mask): far beyond any
 /// mission window, and a guard against a file whose header claims an absurd size.
 pub const MAX_LOAD_NODES: usize = 400_000_000;
-
-/// Regular nodes: (x0 + i·dx, y0 + j·dy), i < nx, j < ny, j = 0 the southernmost row; in the
-/// units of the grid's CRS (metres, or degrees of longitude and latitude).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Lattice {
-    pub nx: usize,
-    pub ny: usize,
-    pub x0: f64,
-    pub y0: f64,
-    pub dx: f64,
-    pub dy: f64,
-}
-
-impl Lattice {
-    pub fn x_max(&self) -> f64 {
-        self.x0 + (self.nx - 1) as f64 * self.dx
-    }
-    pub fn y_max(&self) -> f64 {
-        self.y0 + (self.ny - 1) as f64 * self.dy
-    }
-}
 
 /// A block of nodes of a lattice: i0..i0+nx, j0..j0+ny.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -374,17 +353,8 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedFloor, SeafloorErro
             let (mut z, nodata) = file.read(w)?;
             let signs = count_signs(&z, &nodata);
             apply(opts.values, &mut z);
-            let floor = Seafloor::from_nodes(
-                w.nx,
-                w.ny,
-                native.x0 + w.i0 as f64 * native.dx,
-                native.y0 + w.j0 as f64 * native.dy,
-                native.dx,
-                native.dy,
-                z,
-                nodata,
-            )
-            .map_err(|e| region_error(format!("the nodes of the mission window: {e}")))?;
+            let floor = Seafloor::from_nodes(native.block(w), z, nodata)
+                .map_err(|e| region_error(format!("the nodes of the mission window: {e}")))?;
             (floor, None, signs)
         }
     };

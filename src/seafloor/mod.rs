@@ -48,6 +48,7 @@ mod geokeys;
 mod geotiff;
 mod geotiff_write;
 mod info;
+mod lattice;
 mod load;
 pub(crate) mod obstacles;
 mod resample;
@@ -60,9 +61,8 @@ pub use crs::{parse_crs, wkt_of, CrsSource};
 pub use error::SeafloorError;
 pub use geotiff_write::{write_geotiff, GeoTiffOptions, SampleType, TiffCompression, TiffLayout};
 pub use info::{info, info_with_crs, GridInfo};
-pub use load::{
-    load, Crs, GridFormat, Lattice, LoadOptions, LoadedFloor, NodeWindow, Region, Values,
-};
+pub use lattice::Lattice;
+pub use load::{load, Crs, GridFormat, LoadOptions, LoadedFloor, NodeWindow, Region, Values};
 pub use obstacles::{SegmentObstacle, KEEP_OUT_LIFT};
 pub use synthetic::{SyntheticParams, MAX_SYNTHETIC_FEATURES, MAX_SYNTHETIC_NODES_PER_AXIS};
 
@@ -164,12 +164,8 @@ pub struct SegmentClearance {
 /// A seafloor elevation grid. See the module documentation for the rules it follows.
 #[derive(Clone, PartialEq)]
 pub struct Seafloor {
-    nx: usize,
-    ny: usize,
-    x0: f64,
-    y0: f64,
-    dx: f64,
-    dy: f64,
+    /// The nodes: size, south-west node and spacing, metres.
+    lattice: Lattice,
     /// Node elevations, `z[j * nx + i]`; 0.0 at NODATA nodes.
     z: Vec<f64>,
     /// `nodata[j * nx + i]` is true at a NODATA node.
@@ -182,13 +178,14 @@ pub struct Seafloor {
 
 impl std::fmt::Debug for Seafloor {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let l = &self.lattice;
         f.debug_struct("Seafloor")
-            .field("nx", &self.nx)
-            .field("ny", &self.ny)
-            .field("x0", &self.x0)
-            .field("y0", &self.y0)
-            .field("dx", &self.dx)
-            .field("dy", &self.dy)
+            .field("nx", &l.nx)
+            .field("ny", &l.ny)
+            .field("x0", &l.x0)
+            .field("y0", &l.y0)
+            .field("dx", &l.dx)
+            .field("dy", &l.dy)
             .field("z_range", &self.z_range)
             .field("nodata_nodes", &self.nodata.iter().filter(|&&b| b).count())
             .finish()
@@ -196,24 +193,26 @@ impl std::fmt::Debug for Seafloor {
 }
 
 impl Seafloor {
-    /// Builds a grid from its nodes: `z[j * nx + i]` at (x0 + i·dx, y0 + j·dy), j = 0 the
-    /// southernmost row; `nodata[j * nx + i]` true marks a NODATA node, whose `z` entry is
-    /// ignored (it may be NaN) and stored as 0.0.
+    /// Builds a grid from its nodes on `lattice`: `z[j * nx + i]` at (x0 + i·dx, y0 + j·dy),
+    /// j = 0 the southernmost row; `nodata[j * nx + i]` true marks a NODATA node, whose `z`
+    /// entry is ignored (it may be NaN) and stored as 0.0.
     ///
     /// Requires 2 ≤ nx, ny ≤ [`MAX_NODES_PER_AXIS`], finite x0 and y0, finite positive dx and
     /// dy, both vectors of length nx·ny, at least one data node, and every data node finite
     /// within ±[`MAX_ABS_ELEVATION`].
-    #[allow(clippy::too_many_arguments)]
     pub fn from_nodes(
-        nx: usize,
-        ny: usize,
-        x0: f64,
-        y0: f64,
-        dx: f64,
-        dy: f64,
+        lattice: Lattice,
         mut z: Vec<f64>,
         nodata: Vec<bool>,
     ) -> Result<Seafloor, SeafloorError> {
+        let Lattice {
+            nx,
+            ny,
+            x0,
+            y0,
+            dx,
+            dy,
+        } = lattice;
         let invalid = |reason: String| Err(SeafloorError::InvalidGrid(reason));
         for (name, n) in [("nx", nx), ("ny", ny)] {
             if !(2..=MAX_NODES_PER_AXIS).contains(&n) {
@@ -232,9 +231,7 @@ impl Seafloor {
                 return invalid(format!("{name} = {v}: expected a positive number"));
             }
         }
-        let x_max = x0 + (nx - 1) as f64 * dx;
-        let y_max = y0 + (ny - 1) as f64 * dy;
-        if !(x_max.is_finite() && y_max.is_finite()) {
+        if !(lattice.x_max().is_finite() && lattice.y_max().is_finite()) {
             return invalid("the grid's far corner is not a finite coordinate".to_string());
         }
         let Some(n) = nx.checked_mul(ny) else {
@@ -268,12 +265,7 @@ impl Seafloor {
         }
         let obstacles = z_range.1 >= 0.0 || nodata.contains(&true);
         Ok(Seafloor {
-            nx,
-            ny,
-            x0,
-            y0,
-            dx,
-            dy,
+            lattice,
             z,
             nodata,
             z_range,
@@ -282,51 +274,48 @@ impl Seafloor {
     }
 
     pub fn nx(&self) -> usize {
-        self.nx
+        self.lattice.nx
     }
     pub fn ny(&self) -> usize {
-        self.ny
+        self.lattice.ny
     }
     /// x of the westernmost node column, metres.
     pub fn x0(&self) -> f64 {
-        self.x0
+        self.lattice.x0
     }
     /// y of the southernmost node row, metres.
     pub fn y0(&self) -> f64 {
-        self.y0
+        self.lattice.y0
     }
     pub fn dx(&self) -> f64 {
-        self.dx
+        self.lattice.dx
     }
     pub fn dy(&self) -> f64 {
-        self.dy
+        self.lattice.dy
     }
 
     /// Stored elevation of node (i, j) (0.0 at a NODATA node). Panics if i ≥ nx or j ≥ ny.
     pub fn node(&self, i: usize, j: usize) -> f64 {
-        assert!(
-            i < self.nx && j < self.ny,
-            "node ({i}, {j}) outside the grid"
-        );
-        self.z[j * self.nx + i]
+        let l = &self.lattice;
+        assert!(i < l.nx && j < l.ny, "node ({i}, {j}) outside the grid");
+        self.z[l.index(i, j)]
     }
 
     /// Whether node (i, j) is NODATA. Panics if i ≥ nx or j ≥ ny.
     pub fn is_nodata(&self, i: usize, j: usize) -> bool {
-        assert!(
-            i < self.nx && j < self.ny,
-            "node ({i}, {j}) outside the grid"
-        );
-        self.nodata[j * self.nx + i]
+        let l = &self.lattice;
+        assert!(i < l.nx && j < l.ny, "node ({i}, {j}) outside the grid");
+        self.nodata[l.index(i, j)]
     }
 
     /// Node-centre extent: [x0, x0 + (nx−1)dx] × [y0, y0 + (ny−1)dy].
     pub fn extent(&self) -> Extent {
+        let l = &self.lattice;
         Extent {
-            x_min: self.x0,
-            x_max: self.x0 + (self.nx - 1) as f64 * self.dx,
-            y_min: self.y0,
-            y_max: self.y0 + (self.ny - 1) as f64 * self.dy,
+            x_min: l.x0,
+            x_max: l.x_max(),
+            y_min: l.y0,
+            y_max: l.y_max(),
         }
     }
 
@@ -343,14 +332,7 @@ impl Seafloor {
 
     /// The node lattice: size, south-west node and spacing.
     pub fn lattice(&self) -> Lattice {
-        Lattice {
-            nx: self.nx,
-            ny: self.ny,
-            x0: self.x0,
-            y0: self.y0,
-            dx: self.dx,
-            dy: self.dy,
-        }
+        self.lattice
     }
 
     /// Every stored node value (0.0 at NODATA) and the NODATA mask, in storage order
@@ -382,9 +364,10 @@ impl Seafloor {
     /// little-endian; then the NODATA mask in the same order, one byte (0 or 1) per node.
     pub fn fingerprint(&self) -> String {
         let mut h = Sha256::new();
-        h.update((self.nx as u64).to_le_bytes());
-        h.update((self.ny as u64).to_le_bytes());
-        for v in [self.x0, self.y0, self.dx, self.dy] {
+        let l = &self.lattice;
+        h.update((l.nx as u64).to_le_bytes());
+        h.update((l.ny as u64).to_le_bytes());
+        for v in [l.x0, l.y0, l.dx, l.dy] {
             h.update(v.to_bits().to_le_bytes());
         }
         for v in &self.z {

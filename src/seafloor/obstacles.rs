@@ -78,7 +78,8 @@ impl Seafloor {
         if !self.obstacles {
             return self.clone();
         }
-        let (nx, ny) = (self.nx, self.ny);
+        let l = self.lattice;
+        let (nx, ny) = (l.nx, l.ny);
         let obstacle_node = |k: usize| self.nodata[k] || self.z[k] >= 0.0;
         let mut wall = vec![false; nx * ny];
         for j in 0..ny - 1 {
@@ -90,7 +91,7 @@ impl Seafloor {
                 }
             }
         }
-        let d = chamfer(&wall, nx, ny, self.dx, self.dy);
+        let d = chamfer(&wall, nx, ny, l.dx, l.dy);
         let z: Vec<f64> = (0..nx * ny)
             .map(|k| {
                 if !wall[k] {
@@ -110,12 +111,7 @@ impl Seafloor {
                 (lo.min(v), hi.max(v))
             });
         Seafloor {
-            nx,
-            ny,
-            x0: self.x0,
-            y0: self.y0,
-            dx: self.dx,
-            dy: self.dy,
+            lattice: l,
             z,
             nodata: vec![false; nx * ny],
             z_range,
@@ -168,6 +164,7 @@ pub(crate) fn chamfer(inside: &[bool], nx: usize, ny: usize, dx: f64, dy: f64) -
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::seafloor::Lattice;
     use proptest::prelude::*;
 
     /// 12 × 9 nodes of 10 × 20 m at −40 m with NODATA nodes and land nodes at the given
@@ -182,7 +179,7 @@ mod tests {
         for &(i, j, h) in land {
             z[j * nx + i] = h;
         }
-        Seafloor::from_nodes(nx, ny, 100.0, -50.0, 10.0, 20.0, z, m).unwrap()
+        Seafloor::from_nodes(Lattice::new(nx, ny, 100.0, -50.0, 10.0, 20.0), z, m).unwrap()
     }
 
     #[test]
@@ -221,12 +218,7 @@ mod tests {
     #[test]
     fn every_node_a_wall_stays_finite() {
         let f = Seafloor::from_nodes(
-            2,
-            2,
-            0.0,
-            0.0,
-            1.0,
-            1.0,
+            Lattice::new(2, 2, 0.0, 0.0, 1.0, 1.0),
             vec![-1.0, 1.0, -1.0, -1.0],
             vec![false; 4],
         )
@@ -276,7 +268,7 @@ mod tests {
             let z: Vec<f64> = seed.iter().map(|s| s.0).collect();
             let m: Vec<bool> = seed.iter().map(|s| s.1 == 0).collect();
             prop_assume!(m.iter().any(|&b| !b));
-            let f = Seafloor::from_nodes(nx, ny, -30.0, 70.0, 7.0, 11.0, z, m).unwrap();
+            let f = Seafloor::from_nodes(Lattice::new(nx, ny, -30.0, 70.0, 7.0, 11.0), z, m).unwrap();
             let k = f.keep_out();
             let e = f.extent();
             for (u, v) in points {

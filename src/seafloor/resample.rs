@@ -3,10 +3,10 @@
 
 use super::geo::LocalFrame;
 use super::load::{
-    apply, count_signs, frame_for, GridFile, Lattice, LoadOptions, NodeWindow, Region,
-    MAX_LOAD_NODES, MAX_WINDOW_DISTANCE,
+    apply, count_signs, frame_for, GridFile, LoadOptions, NodeWindow, Region, MAX_LOAD_NODES,
+    MAX_WINDOW_DISTANCE,
 };
-use super::{Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
+use super::{Lattice, Seafloor, SeafloorError, MAX_NODES_PER_AXIS};
 
 /// Inclusive index ranges of the metric lattice (x = i·dx, y = j·dy).
 #[derive(Debug, Clone, Copy)]
@@ -285,8 +285,12 @@ pub(crate) fn geographic(
             mm.push(nd[k] || out[k]);
         }
     }
-    let floor = Seafloor::from_nodes(mx, my, t.i0 as f64 * dx, t.j0 as f64 * dy, dx, dy, zz, mm)
-        .map_err(|e| fail(format!("the resampled grid: {e}")))?;
+    let floor = Seafloor::from_nodes(
+        Lattice::new(mx, my, t.i0 as f64 * dx, t.j0 as f64 * dy, dx, dy),
+        zz,
+        mm,
+    )
+    .map_err(|e| fail(format!("the resampled grid: {e}")))?;
     Ok((floor, frame.origin(), signs))
 }
 

@@ -16,7 +16,7 @@
 //!    the lowest raw node becomes `deepest`, the highest `shallowest`. This keeps the shapes but
 //!    makes `base_depth` immaterial and scales the slope along with the relief.
 
-use super::{Seafloor, SeafloorError, MAX_ABS_ELEVATION};
+use super::{Lattice, Seafloor, SeafloorError, MAX_ABS_ELEVATION};
 use rand::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
@@ -177,8 +177,9 @@ impl Seafloor {
         let cell = params.cell;
         let x0 = -((nx - 1) as f64 * cell) / 2.0;
         let y0 = -((ny - 1) as f64 * cell) / 2.0;
-        let xs: Vec<f64> = (0..nx).map(|i| x0 + i as f64 * cell).collect();
-        let ys: Vec<f64> = (0..ny).map(|j| y0 + j as f64 * cell).collect();
+        let lattice = Lattice::new(nx, ny, x0, y0, cell, cell);
+        let xs: Vec<f64> = (0..nx).map(|i| lattice.x(i)).collect();
+        let ys: Vec<f64> = (0..ny).map(|j| lattice.y(j)).collect();
 
         let mut z = Vec::with_capacity(nx * ny);
         for &y in &ys {
@@ -244,7 +245,7 @@ impl Seafloor {
                 ),
             });
         }
-        Seafloor::from_nodes(nx, ny, x0, y0, cell, cell, z, vec![false; nx * ny])
+        Seafloor::from_nodes(lattice, z, vec![false; nx * ny])
     }
 }
 

@@ -13,10 +13,9 @@ fn grid(
     dy: f64,
     f: impl Fn(f64, f64) -> f64,
 ) -> Seafloor {
-    let z = (0..nx * ny)
-        .map(|k| f(x0 + (k % nx) as f64 * dx, y0 + (k / nx) as f64 * dy))
-        .collect();
-    Seafloor::from_nodes(nx, ny, x0, y0, dx, dy, z, vec![false; nx * ny]).unwrap()
+    let l = Lattice::new(nx, ny, x0, y0, dx, dy);
+    let z = (0..nx * ny).map(|k| f(l.x(k % nx), l.y(k / nx))).collect();
+    Seafloor::from_nodes(l, z, vec![false; nx * ny]).unwrap()
 }
 
 fn bumpy() -> Seafloor {
@@ -85,7 +84,7 @@ proptest! {
         t in 0.05f64..0.95, s in 0.05f64..0.95,
     ) {
         let z = seed[..nx * ny].to_vec();
-        let f = Seafloor::from_nodes(nx, ny, x0, y0, dx, dy, z, vec![false; nx * ny]).unwrap();
+        let f = Seafloor::from_nodes(Lattice::new(nx, ny, x0, y0, dx, dy), z, vec![false; nx * ny]).unwrap();
         let (i, j) = (ci % (nx - 1), cj % (ny - 1));
         let x = x0 + (i as f64 + t) * dx;
         let y = y0 + (j as f64 + s) * dy;
@@ -186,7 +185,7 @@ fn nodata_and_land_are_obstacles() {
     z[11] = f64::NAN; // ignored at a NODATA node
     let mut nodata = vec![false; 12];
     nodata[11] = true;
-    let f = Seafloor::from_nodes(4, 3, 0.0, 0.0, 10.0, 10.0, z, nodata).unwrap();
+    let f = Seafloor::from_nodes(Lattice::new(4, 3, 0.0, 0.0, 10.0, 10.0), z, nodata).unwrap();
     assert_eq!(f.node(3, 2), 0.0);
     assert!(f.is_nodata(3, 2) && !f.is_nodata(2, 2));
     assert_eq!(f.z_range(), (-30.0, 0.0));
@@ -207,12 +206,7 @@ fn nodata_and_land_are_obstacles() {
 #[test]
 fn z_range_ignores_nodata() {
     let f = Seafloor::from_nodes(
-        2,
-        2,
-        0.0,
-        0.0,
-        1.0,
-        1.0,
+        Lattice::new(2, 2, 0.0, 0.0, 1.0, 1.0),
         vec![-5.0, -7.0, 99.0, -6.0],
         vec![false, false, true, false],
     )
@@ -224,77 +218,56 @@ fn z_range_ignores_nodata() {
 fn from_nodes_rejects_bad_grids() {
     let ok = |nx: usize, ny: usize| (vec![-1.0; nx * ny], vec![false; nx * ny]);
     let (z, m) = ok(2, 2);
+    let unit = Lattice::new(2, 2, 0.0, 0.0, 1.0, 1.0);
+    let build = |l: Lattice, z: &[f64], m: &[bool]| Seafloor::from_nodes(l, z.to_vec(), m.to_vec());
     let cases: Vec<(&str, Result<Seafloor, SeafloorError>)> = vec![
         (
             "nx = 1",
-            Seafloor::from_nodes(1, 2, 0.0, 0.0, 1.0, 1.0, vec![-1.0; 2], vec![false; 2]),
+            build(
+                Lattice::new(1, 2, 0.0, 0.0, 1.0, 1.0),
+                &[-1.0; 2],
+                &[false; 2],
+            ),
         ),
         (
             "ny = 0",
-            Seafloor::from_nodes(2, 0, 0.0, 0.0, 1.0, 1.0, vec![], vec![]),
+            build(Lattice::new(2, 0, 0.0, 0.0, 1.0, 1.0), &[], &[]),
         ),
         (
             "nx = 50001",
-            Seafloor::from_nodes(50_001, 2, 0.0, 0.0, 1.0, 1.0, vec![], vec![]),
+            build(Lattice::new(50_001, 2, 0.0, 0.0, 1.0, 1.0), &[], &[]),
         ),
         (
             "x0 = NaN",
-            Seafloor::from_nodes(2, 2, f64::NAN, 0.0, 1.0, 1.0, z.clone(), m.clone()),
+            build(Lattice::new(2, 2, f64::NAN, 0.0, 1.0, 1.0), &z, &m),
         ),
         (
             "dx = 0",
-            Seafloor::from_nodes(2, 2, 0.0, 0.0, 0.0, 1.0, z.clone(), m.clone()),
+            build(Lattice::new(2, 2, 0.0, 0.0, 0.0, 1.0), &z, &m),
         ),
         (
             "dy = -1",
-            Seafloor::from_nodes(2, 2, 0.0, 0.0, 1.0, -1.0, z.clone(), m.clone()),
+            build(Lattice::new(2, 2, 0.0, 0.0, 1.0, -1.0), &z, &m),
         ),
         (
             "dx = inf",
-            Seafloor::from_nodes(2, 2, 0.0, 0.0, f64::INFINITY, 1.0, z.clone(), m.clone()),
+            build(Lattice::new(2, 2, 0.0, 0.0, f64::INFINITY, 1.0), &z, &m),
         ),
         (
             "far corner",
-            Seafloor::from_nodes(2, 2, 1.7e308, 0.0, 1e308, 1.0, z.clone(), m.clone()),
+            build(Lattice::new(2, 2, 1.7e308, 0.0, 1e308, 1.0), &z, &m),
         ),
-        (
-            "3 elevations",
-            Seafloor::from_nodes(2, 2, 0.0, 0.0, 1.0, 1.0, vec![-1.0; 3], m.clone()),
-        ),
-        (
-            "5 NODATA flags",
-            Seafloor::from_nodes(2, 2, 0.0, 0.0, 1.0, 1.0, z.clone(), vec![false; 5]),
-        ),
+        ("3 elevations", build(unit, &[-1.0; 3], &m)),
+        ("5 NODATA flags", build(unit, &z, &[false; 5])),
         (
             "elevation NaN",
-            Seafloor::from_nodes(
-                2,
-                2,
-                0.0,
-                0.0,
-                1.0,
-                1.0,
-                vec![-1.0, f64::NAN, -1.0, -1.0],
-                m.clone(),
-            ),
+            build(unit, &[-1.0, f64::NAN, -1.0, -1.0], &m),
         ),
         (
             "elevation -60000",
-            Seafloor::from_nodes(
-                2,
-                2,
-                0.0,
-                0.0,
-                1.0,
-                1.0,
-                vec![-1.0, -6e4, -1.0, -1.0],
-                m.clone(),
-            ),
+            build(unit, &[-1.0, -6e4, -1.0, -1.0], &m),
         ),
-        (
-            "every node is NODATA",
-            Seafloor::from_nodes(2, 2, 0.0, 0.0, 1.0, 1.0, z.clone(), vec![true; 4]),
-        ),
+        ("every node is NODATA", build(unit, &z, &[true; 4])),
     ];
     for (name, r) in cases {
         let err = r.expect_err(name);
@@ -303,7 +276,7 @@ fn from_nodes_rejects_bad_grids() {
             "{name}: {err}"
         );
     }
-    assert!(Seafloor::from_nodes(2, 2, 0.0, 0.0, 1.0, 1.0, z, m).is_ok());
+    assert!(Seafloor::from_nodes(unit, z, m).is_ok());
 }
 
 #[test]
@@ -369,20 +342,16 @@ fn fingerprint_sees_every_bit() {
         let mut m = f.nodata.clone();
         z[k] = f64::from_bits(z[k].to_bits() + dz as u64);
         m[k] = masked;
-        Seafloor::from_nodes(f.nx, f.ny, f.x0, f.y0, f.dx, f.dy, z, m)
-            .unwrap()
-            .fingerprint()
+        Seafloor::from_nodes(f.lattice, z, m).unwrap().fingerprint()
     };
     assert_eq!(rebuild(3, 0.0, false), fp);
     assert_ne!(rebuild(3, 1.0, false), fp); // one ulp
     assert_ne!(rebuild(3, 0.0, true), fp);
     let shifted = Seafloor::from_nodes(
-        f.nx,
-        f.ny,
-        f.x0,
-        f.y0 + 1e-9,
-        f.dx,
-        f.dy,
+        Lattice {
+            y0: f.lattice.y0 + 1e-9,
+            ..f.lattice
+        },
         f.z.clone(),
         f.nodata.clone(),
     )

@@ -248,7 +248,8 @@ mod tests {
                 (x - 1000.0).hypot(y - 500.0) <= 100.0
             })
             .collect();
-        Seafloor::from_nodes(nx, ny, 0.0, 0.0, d, d, vec![-50.0; nx * ny], nodata).unwrap()
+        let lattice = crate::seafloor::Lattice::new(nx, ny, 0.0, 0.0, d, d);
+        Seafloor::from_nodes(lattice, vec![-50.0; nx * ny], nodata).unwrap()
     }
 
     #[test]

@@ -240,7 +240,8 @@ mod tests {
                 (x - 250.0).hypot(y) <= 60.0
             })
             .collect();
-        Seafloor::from_nodes(n, n, o, o, d, d, vec![-100.0; n * n], nodata).unwrap()
+        let lattice = crate::seafloor::Lattice::new(n, n, o, o, d, d);
+        Seafloor::from_nodes(lattice, vec![-100.0; n * n], nodata).unwrap()
     }
 
     /// One AUV, K = 2: the USV and the AUV at the given positions per step, at rest.

@@ -4,7 +4,7 @@
 
 use super::ViewerError;
 use crate::plan::{Link, Metrics, Plan, Window};
-use crate::seafloor::Seafloor;
+use crate::seafloor::{Lattice, Seafloor};
 use serde::Serialize;
 
 /// Largest number of mesh vertices along either axis of the floor sent to the page.
@@ -41,12 +41,9 @@ pub struct FloorData {
     pub grid_nx: usize,
     pub grid_ny: usize,
     pub grid_dx: f64,
-    pub nx: usize,
-    pub ny: usize,
-    pub x0: f64,
-    pub y0: f64,
-    pub dx: f64,
-    pub dy: f64,
+    /// The vertices, written as the six fields `nx`, `ny`, `x0`, `y0`, `dx`, `dy`.
+    #[serde(flatten)]
+    pub lattice: Lattice,
     /// Deepest and shallowest data vertex, m.
     pub z_lo: f64,
     pub z_hi: f64,
@@ -224,14 +221,15 @@ pub fn floor_mesh(floor: &Seafloor, source: &str, b: [f64; 4], margin: f64) -> F
         let u = if up { u.ceil() } else { u.floor() };
         u.clamp(0.0, (n - 1) as f64) as usize
     };
-    let (fx, fy) = (floor.nx(), floor.ny());
+    let g = floor.lattice();
+    let (fx, fy) = (g.nx, g.ny);
     let (i0, i1) = (
-        index(xs[0], floor.x0(), floor.dx(), fx, false),
-        index(xs[1], floor.x0(), floor.dx(), fx, true),
+        index(xs[0], g.x0, g.dx, fx, false),
+        index(xs[1], g.x0, g.dx, fx, true),
     );
     let (j0, j1) = (
-        index(ys[0], floor.y0(), floor.dy(), fy, false),
-        index(ys[1], floor.y0(), floor.dy(), fy, true),
+        index(ys[0], g.y0, g.dy, fy, false),
+        index(ys[1], g.y0, g.dy, fy, true),
     );
     let widest = (i1 - i0).max(j1 - j0);
     let stride = widest.div_ceil(MAX_FLOOR_VERTICES - 1).max(1);
@@ -262,13 +260,15 @@ pub fn floor_mesh(floor: &Seafloor, source: &str, b: [f64; 4], margin: f64) -> F
         source: source.to_string(),
         grid_nx: fx,
         grid_ny: fy,
-        grid_dx: floor.dx(),
-        nx,
-        ny,
-        x0: floor.x0() + i0 as f64 * floor.dx(),
-        y0: floor.y0() + j0 as f64 * floor.dy(),
-        dx: floor.dx() * stride as f64,
-        dy: floor.dy() * stride as f64,
+        grid_dx: g.dx,
+        lattice: Lattice {
+            nx,
+            ny,
+            x0: g.x(i0),
+            y0: g.y(j0),
+            dx: g.dx * stride as f64,
+            dy: g.dy * stride as f64,
+        },
         z_lo: lo,
         z_hi: hi,
         z: base64(&bytes),

@@ -1,5 +1,6 @@
 use super::data::{auv_colour, base64, floor_mesh, MAX_FLOOR_VERTICES};
 use super::*;
+use crate::seafloor::Lattice;
 
 #[test]
 fn vendored_three_is_the_pinned_release_and_loads_through_the_import_map() {
@@ -97,10 +98,11 @@ fn the_floor_is_cropped_around_the_mission_and_quantised() {
         .collect();
     let mut nodata = vec![false; n * n];
     nodata[50 * n + 50] = true;
-    let floor = Seafloor::from_nodes(n, n, 0.0, 0.0, 10.0, 10.0, z, nodata).unwrap();
+    let floor = Seafloor::from_nodes(Lattice::new(n, n, 0.0, 0.0, 10.0, 10.0), z, nodata).unwrap();
     // vehicles within [400, 600]², margin 100 m: the crop is [300, 700]² (41 × 41 nodes)
     let f = floor_mesh(&floor, "file", [400.0, 600.0, 400.0, 600.0], 100.0);
-    assert_eq!((f.nx, f.ny, f.x0, f.y0, f.dx), (41, 41, 300.0, 300.0, 10.0));
+    let l = f.lattice;
+    assert_eq!((l.nx, l.ny, l.x0, l.y0, l.dx), (41, 41, 300.0, 300.0, 10.0));
     let q = decode(&f.z);
     assert_eq!(q.len(), 41 * 41);
     assert_eq!((f.z_lo, f.z_hi), (-141.0, -61.0));
@@ -109,19 +111,25 @@ fn the_floor_is_cropped_around_the_mission_and_quantised() {
     assert!((back(0) - -61.0).abs() < 1e-9);
     assert!((back(3 * 41 + 5) - -69.0).abs() < 2e-3);
     // a mission wider than the grid: the whole grid, no stride needed
-    let f = floor_mesh(&floor, "file", [-5e3, 5e3, -5e3, 5e3], 100.0);
-    assert_eq!((f.nx, f.ny, f.x0, f.dx), (101, 101, 0.0, 10.0));
+    let l = floor_mesh(&floor, "file", [-5e3, 5e3, -5e3, 5e3], 100.0).lattice;
+    assert_eq!((l.nx, l.ny, l.x0, l.dx), (101, 101, 0.0, 10.0));
 }
 
 #[test]
 fn large_floors_are_downsampled_to_at_most_256_vertices_per_axis() {
     let (nx, ny) = (1201, 700);
     let z = vec![-50.0; nx * ny];
-    let floor = Seafloor::from_nodes(nx, ny, 0.0, 0.0, 5.0, 5.0, z, vec![false; nx * ny]).unwrap();
+    let floor = Seafloor::from_nodes(
+        Lattice::new(nx, ny, 0.0, 0.0, 5.0, 5.0),
+        z,
+        vec![false; nx * ny],
+    )
+    .unwrap();
     let f = floor_mesh(&floor, "file", [0.0, 6000.0, 0.0, 3500.0], 100.0);
-    assert!(f.nx <= MAX_FLOOR_VERTICES && f.ny <= MAX_FLOOR_VERTICES);
-    assert_eq!((f.nx, f.dx, f.dy), (241, 25.0, 25.0));
-    assert!(f.x0 + (f.nx - 1) as f64 * f.dx <= 6000.0);
+    let l = f.lattice;
+    assert!(l.nx <= MAX_FLOOR_VERTICES && l.ny <= MAX_FLOOR_VERTICES);
+    assert_eq!((l.nx, l.dx, l.dy), (241, 25.0, 25.0));
+    assert!(l.x0 + (l.nx - 1) as f64 * l.dx <= 6000.0);
     assert_eq!((f.z_lo, f.z_hi), (-50.0, -50.0));
 }
 

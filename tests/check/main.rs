@@ -18,7 +18,7 @@ use shoal::plan::{
     FORMAT,
 };
 use shoal::scenario::{Discretisation, Scenario, UsvObjective};
-use shoal::seafloor::Seafloor;
+use shoal::seafloor::{Lattice, Seafloor};
 use shoal::vehicle::{AuvModel, Damping, UsvModel};
 
 // ---------------------------------------------------------------------------------------------
@@ -37,7 +37,7 @@ fn grid(x0: f64, y0: f64, d: f64, n: usize, f: impl Fn(f64, f64) -> Option<f64>)
             nodata.push(v.is_none());
         }
     }
-    Seafloor::from_nodes(n, n, x0, y0, d, d, z, nodata).unwrap()
+    Seafloor::from_nodes(Lattice::new(n, n, x0, y0, d, d), z, nodata).unwrap()
 }
 
 /// Flat floor at −100 m, 5 m cells, covering [−300, 300]².

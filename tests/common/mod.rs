@@ -40,7 +40,7 @@ pub fn survey() -> (Lattice, Vec<f64>, Vec<bool>) {
 }
 
 pub fn floor_of(l: &Lattice, z: &[f64], nd: &[bool]) -> Seafloor {
-    Seafloor::from_nodes(l.nx, l.ny, l.x0, l.y0, l.dx, l.dy, z.to_vec(), nd.to_vec()).unwrap()
+    Seafloor::from_nodes(*l, z.to_vec(), nd.to_vec()).unwrap()
 }
 
 pub fn tif(

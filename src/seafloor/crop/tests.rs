@@ -15,7 +15,7 @@ fn grid(
             nd.push(hole(i, j));
         }
     }
-    Seafloor::from_nodes(nx, ny, x0, y0, d, d, z, nd).unwrap()
+    Seafloor::from_nodes(Lattice::new(nx, ny, x0, y0, d, d), z, nd).unwrap()
 }
 
 fn plane(x: f64, y: f64) -> f64 {
@@ -150,7 +150,7 @@ fn obstacle_grid() -> impl Strategy<Value = (Seafloor, f64, [f64; 4])> {
                 .collect();
             let mut nd = nd.to_vec();
             nd[0] = false;
-            f = Seafloor::from_nodes(nx, ny, 3.0, -7.0, dx, dx, z, nd).unwrap();
+            f = Seafloor::from_nodes(Lattice::new(nx, ny, 3.0, -7.0, dx, dx), z, nd).unwrap();
             let e = f.extent();
             let (w, h) = (e.x_max - e.x_min, e.y_max - e.y_min);
             let region = [
