@@ -229,3 +229,22 @@ fn regression_fifteen_auvs_keep_their_chain() {
     assert_eq!(p.windows[0].final_.status, "converged");
     assert!(p.windows[0].links.out_of_band.is_empty());
 }
+
+/// Regression (issue 13): AUVs slower than the USV's limit (gliders, slow survey AUVs), or a USV
+/// faster than the AUVs, were refused with "step1: the convex subproblem is infeasible …
+/// without C1_7": the first guess sent the team in formation at the USV's top speed, beyond
+/// what the AUVs can hold, and the first convex model around it had no feasible point. The
+/// formation now moves at a speed every vehicle holds, and each plan passes its check.
+#[test]
+fn regression_slow_auvs_behind_a_fast_usv_plan() {
+    for (auv, usv) in [(1.0, 1.5), (0.3, 1.5), (0.2, 3.0), (2.0, 2.5)] {
+        let mut s = Scenario::default();
+        s.auv.max_speed = auv;
+        s.usv.max_speed = usv;
+        let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
+        let p = plan_on(&s, &f, source);
+        let r = check_plan(&p, &f);
+        assert!(r.passed(), "AUVs {auv} m/s, USV {usv} m/s:\n{}", r.table());
+        assert_eq!(p.metrics.connected_fraction, 1.0);
+    }
+}

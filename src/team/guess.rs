@@ -9,13 +9,26 @@ use crate::trajectory::Trajectory;
 /// Height above ε (m) at which the first reference runs above the floor.
 const GUESS_HEIGHT: f64 = 5.0;
 
-/// Fractions of the USV's full speed tried by `initial_guess` (never 0: OF1_8's gradient vanishes
+/// Share of the AUVs' speed limit at which the formation may move horizontally, at most: the
+/// rest leaves room for the descent towards the floor (`formation` caps the vertical speed so
+/// that no AUV of the guess exceeds V_max).
+const FORMATION_SHARE: f64 = 0.9;
+
+/// Relative margin below V_max of every AUV velocity of the guess (the model tightens C1_7 by
+/// 10⁻⁶; the guess stays clear of that).
+const GUESS_SPEED_MARGIN: f64 = 1e-3;
+
+/// Fractions of the formation's top speed tried by `initial_guess` (never 0: OF1_8's gradient vanishes
 /// when the USV does not move).
 const SPEED_FRACTIONS: [f64; 6] = [1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125];
 
 /// The first reference. The USV heads out in a straight line (towards the destination, or
 /// along `usv.initial_heading` / its current course) at a constant speed, never zero, so
-/// that the concave OF1_8 has a nonzero gradient to start from. Each AUV follows it in
+/// that the concave OF1_8 has a nonzero gradient to start from, and never more than every
+/// vehicle can hold: the USV's limit and `FORMATION_SHARE` of the AUVs' (slow AUVs and gliders
+/// behind a fast USV). The guess so meets every hard constraint of the convex model (speeds,
+/// ranges, C1_4, the grid), and the first model, which contains it, always has a feasible
+/// point: only the soft, penalised constraints can be violated by a reference. Each AUV follows it in
 /// formation: its horizontal velocity is the USV's from step 1 on (the ZOH model reaches a
 /// commanded velocity within one step), and it descends towards `GUESS_HEIGHT` above the
 /// floor ahead. Over a grid with obstacles the USV's course goes round them (`detour`), the
@@ -32,6 +45,7 @@ pub(super) fn initial_guess(problem: &TeamProblem, previous_heading: Option<f64>
     let s = problem.scenario;
     let kk = problem.layout.k;
     let dt = s.horizon.dt;
+    let top = s.usv.max_speed.min(FORMATION_SHARE * s.auv.max_speed);
     let (dir, speed) = match s.usv.objective {
         UsvObjective::Destination => {
             // towards the destination, arriving at k = K if it is nearer than full speed goes
@@ -40,12 +54,9 @@ pub(super) fn initial_guess(problem: &TeamProblem, previous_heading: Option<f64>
                 s.usv.destination[1] - problem.start.usv[1],
             ];
             let reach = d[0].hypot(d[1]) / (kk as f64 * dt);
-            (d[1].atan2(d[0]), s.usv.max_speed.min(reach))
+            (d[1].atan2(d[0]), top.min(reach))
         }
-        UsvObjective::Away => (
-            previous_heading.unwrap_or(s.usv.initial_heading),
-            s.usv.max_speed,
-        ),
+        UsvObjective::Away => (previous_heading.unwrap_or(s.usv.initial_heading), top),
     };
     // the USV's speed: the fraction of `speed` whose formation has the least objective
     SPEED_FRACTIONS
@@ -85,6 +96,7 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> Trajectory {
     let m = &problem.auv;
     let top = -s.auv.surface_clearance;
     let height = s.auv.floor_clearance + GUESS_HEIGHT;
+    let vmax = s.auv.max_speed * (1.0 - GUESS_SPEED_MARGIN);
     let auv_u = problem
         .start
         .auvs
