@@ -10,8 +10,11 @@ use serde::{Deserialize, Serialize};
 /// Value of the `format` field of every plan this version writes.
 pub const FORMAT: &str = "shoal-plan/2";
 
+/// A plan as `shoal plan` writes it to `plan.json`: the resolved scenario, the floor, the
+/// models, the initial state and every window's stages, graph, links and metrics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Plan {
+    /// Always [`FORMAT`] (`"shoal-plan/2"`); readers refuse anything else.
     pub format: String,
     /// Version of shoal that wrote the plan.
     pub shoal_version: String,
@@ -21,11 +24,14 @@ pub struct Plan {
     pub overrides: Vec<String>,
     /// The fully resolved scenario: every parameter, including the seed.
     pub scenario: Scenario,
+    /// Where the floor came from, its lattice and its fingerprint.
     pub seafloor: SeafloorRecord,
     /// Discrete models actually used (derived from the scenario; recorded for readers).
     pub model: ModelRecord,
     /// State at the start of window 0.
     pub initial: InitialState,
+    /// One per receding-horizon window, in order; window w + 1 starts where window w's final
+    /// stage ends (Algorithm 1, line 7).
     pub windows: Vec<Window>,
     /// Metrics over the whole mission (every window).
     pub metrics: Metrics,
@@ -43,8 +49,9 @@ pub struct SeafloorRecord {
     /// and the spacing (`dx`, `dy`), written as those six fields of the record.
     #[serde(flatten)]
     pub lattice: crate::seafloor::Lattice,
-    /// Shallowest and deepest node elevation, metres.
+    /// Deepest (lowest) data node elevation, metres.
     pub z_min: f64,
+    /// Shallowest (highest) data node elevation, metres.
     pub z_max: f64,
     /// Hex digest of the node values (see `Seafloor::fingerprint`).
     pub fingerprint: String,
@@ -67,31 +74,41 @@ fn crs_none() -> String {
     "none".into()
 }
 
+/// The discrete vehicle models the plan was made with.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ModelRecord {
     /// Damping rates of E' (1/s): surge, heave, yaw.
     pub damping: crate::vehicle::Damping,
     /// Discrete AUV model coefficients per axis.
     pub auv: crate::vehicle::AuvModel,
+    /// USV model, eq. (9): P\[k+1\] = P\[k\] + δ·U\[k\], ‖U\[k\]‖ ≤ max_speed (m/s).
     pub usv: crate::vehicle::UsvModel,
 }
 
+/// The state window 0 starts from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct InitialState {
     /// "seeded" (drawn from the seed, Algorithm 1 line 5) or "explicit" (from the scenario).
     pub origin: String,
+    /// USV position \[x, y\], metres (on the surface, z = 0).
     pub usv: [f64; 2],
+    /// State of each AUV n = 0..N−1.
     pub auvs: Vec<AuvState>,
 }
 
+/// Position and velocity of one AUV at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct AuvState {
+    /// \[x, y, z\], metres (z < 0 below the surface).
     pub position: [f64; 3],
+    /// \[V_x, V_y, V_z\], m/s.
     pub velocity: [f64; 3],
 }
 
+/// One receding-horizon window of Algorithm 1: Steps 1, 2 and 3 over K steps.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Window {
+    /// Window index w, from 0.
     pub index: usize,
     /// Time of step k = 0 of this window, seconds since the start of the mission.
     pub start_time: f64,
@@ -105,6 +122,7 @@ pub struct Window {
     pub final_: Stage,
     /// The links P5 kept in their bands, the bands used, and where a link is outside its band.
     pub links: LinkReport,
+    /// This window's metrics, over its final stage.
     pub metrics: Metrics,
 }
 
@@ -118,13 +136,16 @@ pub struct Graph {
     pub a2a: Vec<Vec<[usize; 2]>>,
     /// True when every P4 was solved exactly (Held–Karp, N ≤ 12); false for the heuristic.
     pub exact: bool,
+    /// Wall-clock time of Step 2 for the window, seconds.
     pub solve_time_s: f64,
 }
 
 /// One acoustic link: AUV `a` to AUV `b`, or to the USV when `b` is None.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Link {
+    /// Index of the AUV at one end.
     pub a: usize,
+    /// Index of the AUV at the other end (an A2A edge), or None for the USV (the A2U link).
     pub b: Option<usize>,
 }
 
@@ -132,25 +153,35 @@ pub struct Link {
 /// lowered for a link that lost line of sight (Algorithm 1, line 20).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Band {
+    /// Lower end, metres: d_s − d_t (lowered to `hi` if `hi` falls below it).
     pub lo: f64,
+    /// Upper end, metres: d_s, less `acoustic.los_shrink` per line-of-sight round in which the
+    /// link was blocked (not below 0).
     pub hi: f64,
 }
 
 /// A planned link whose length in the final plan is outside its band.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct OutOfBand {
+    /// Step k of the window (1..=K).
     pub k: usize,
+    /// The link.
     pub link: Link,
+    /// Its length at step k in the final plan, metres (an A2U link to the USV at z = 0).
     pub length: f64,
+    /// The band it is outside.
     pub band: Band,
 }
 
+/// Step 3's links for one window: the links P5 kept in their bands, the bands, the links that
+/// ended outside their band, and the line-of-sight rounds.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct LinkReport {
     /// Per step k = 0..=K: the planned links (the A2U link first, then the A2A edges in path
     /// order) and their bands. At k = 0 the positions are the window's fixed start, so its links
     /// are reported but not planned.
     pub links: Vec<Vec<Link>>,
+    /// Per step k = 0..=K: the band of each link of `links\[k\]`, in the same order.
     pub bands: Vec<Vec<Band>>,
     /// Every (step, link) of k = 1..=K whose final length is outside its band by more than 1 mm.
     pub out_of_band: Vec<OutOfBand>,
@@ -166,8 +197,9 @@ pub struct Metrics {
     pub input_energy: f64,
     /// Area of seafloor swept by the union of the AUVs' sensor swaths, km².
     pub explored_area_km2: f64,
-    /// Mean and minimum height above the floor over the AUV waypoints k = 1..=K, metres.
+    /// Mean height above the floor, z − Z(x, y), over the AUV waypoints k = 1..=K, metres.
     pub mean_height: f64,
+    /// Minimum height above the floor over the AUV waypoints k = 1..=K, metres.
     pub min_height: f64,
     /// Fraction of steps at which every AUV reaches the USV through links in range (≤ d_s) and
     /// in line of sight: must be 1.
@@ -177,24 +209,34 @@ pub struct Metrics {
     pub chain_fraction: f64,
     /// Largest heading rate of any AUV, rad/s.
     pub max_heading_rate: f64,
-    /// Solve times, seconds: Step 1, Step 2, Step 3 (per window; summed over the mission).
+    /// Solve time of Step 1 (P2), seconds (per window; summed over the mission).
     pub step1_time_s: f64,
+    /// Solve time of Step 2 (P3, P4), seconds (per window; summed over the mission).
     pub step2_time_s: f64,
+    /// Solve time of Step 3 (P5 and its line-of-sight rounds), seconds (per window; summed over
+    /// the mission).
     pub step3_time_s: f64,
 }
 
+/// One SCP stage of a window, Step 1 (P2) or Step 3 (P5 with its line-of-sight rounds): how
+/// the solve went and the team's paths.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Stage {
     /// "converged", or "max_iterations" when the SCP stopped at its iteration limit with a
     /// feasible iterate.
     pub status: String,
+    /// SCP iterations (convex subproblems solved, over every line-of-sight round): the length
+    /// of `scp`.
     pub iterations: usize,
     /// Wall-clock time of the stage, seconds.
     pub solve_time_s: f64,
+    /// The objective's terms at the returned iterate.
     pub objective: ObjectiveTerms,
     /// Largest violation of a nonconvex constraint at the returned iterate (metres or radians).
     pub max_violation: f64,
+    /// The USV's path.
     pub usv: UsvPath,
+    /// The path of each AUV n = 0..N−1.
     pub auvs: Vec<AuvPath>,
     /// One record per SCP iteration.
     pub scp: Vec<ScpIteration>,
@@ -209,7 +251,8 @@ pub struct ObjectiveTerms {
     pub depth: f64,
     /// Σ_k Σ_n (z_n\[k\] − Z(x_n\[k\], y_n\[k\])), metres: OF1_2 when weights.of1_2 = "height".
     pub height: f64,
-    /// OF1_8: ‖P_USV\[K\] − P_USV\[0\]‖², m² (objective "away"), or OF1_8_2: ‖P_USV\[K\] − dest‖², m².
+    /// OF1_8: ‖P_USV\[K\] − P_USV\[0\]‖², m² (objective "away"), or OF1_8_2:
+    /// ‖P_USV\[K\] − dest‖², m².
     pub usv: f64,
     /// OF1_5 (Step 3): Σ_k Σ ‖P_i − P_j‖² over AUV pairs not joined by an A2A edge, m².
     #[serde(default)]
@@ -223,6 +266,7 @@ pub struct ObjectiveTerms {
     pub total: f64,
 }
 
+/// The USV's path over a window's steps.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct UsvPath {
     /// P_USV\[k\], k = 0..=K.
@@ -231,6 +275,8 @@ pub struct UsvPath {
     pub input: Vec<[f64; 2]>,
 }
 
+/// One AUV's path over a window's steps, with the surge speed and heading recovered from its
+/// velocities.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AuvPath {
     /// P_n\[k\], k = 0..=K.
@@ -246,23 +292,29 @@ pub struct AuvPath {
     pub heading: Vec<Option<f64>>,
 }
 
+/// The record of one SCP iteration: one convex subproblem and whether its candidate was
+/// accepted.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ScpIteration {
     /// Trust-region radius used by this iteration's convex subproblem, metres.
     pub trust_region: f64,
-    /// Merit (objective + penalty·violation) at the reference and at the candidate.
+    /// Merit (objective + penalty·violation) at the reference.
     pub merit_before: f64,
+    /// Merit at the candidate.
     pub merit_after: f64,
     /// Decrease predicted by the convex model.
     pub predicted: f64,
     /// ρ = actual / predicted decrease.
     pub ratio: f64,
+    /// Whether the candidate became the reference.
     pub accepted: bool,
     /// Largest true constraint violation of the candidate.
     pub violation: f64,
-    /// Clarabel's status, interior-point iterations and time for the subproblem.
+    /// Clarabel's status for the subproblem.
     pub solver_status: String,
+    /// Clarabel's interior-point iterations for the subproblem.
     #[serde(default)]
     pub solver_iterations: u32,
+    /// Clarabel's solve time for the subproblem, seconds.
     pub solver_time_s: f64,
 }

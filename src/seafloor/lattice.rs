@@ -12,11 +12,17 @@ use serde::{Deserialize, Serialize};
 /// holds one with `#[serde(flatten)]` writes them among its own fields.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Lattice {
+    /// Nodes per row (west to east).
     pub nx: usize,
+    /// Rows (south to north).
     pub ny: usize,
+    /// x of the south-west node (the centre of its cell).
     pub x0: f64,
+    /// y of the south-west node.
     pub y0: f64,
+    /// Node spacing east, > 0.
     pub dx: f64,
+    /// Node spacing north, > 0.
     pub dy: f64,
 }
 

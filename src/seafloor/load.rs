@@ -35,9 +35,13 @@ pub const MAX_LOAD_NODES: usize = 400_000_000;
 /// A block of nodes of a lattice: i0..i0+nx, j0..j0+ny.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NodeWindow {
+    /// Column index (along x) of the block's first, south-west node.
     pub i0: usize,
+    /// Row index (along y, j = 0 southernmost) of the block's first, south-west node.
     pub j0: usize,
+    /// Number of node columns.
     pub nx: usize,
+    /// Number of node rows.
     pub ny: usize,
 }
 
@@ -48,11 +52,17 @@ pub enum Crs {
     None,
     /// Projected, metres; the EPSG code unless user-defined.
     Projected {
+        /// EPSG code of the projected CRS; None when user-defined.
         epsg: Option<u16>,
+        /// The CRS's name as the file gives it (GeoTIFF's GTCitationGeoKey; through GDAL the
+        /// name, with its PROJ string when there is no EPSG code), if any.
         citation: Option<String>,
     },
     /// Geographic, degrees (longitude, latitude); the EPSG code unless user-defined.
-    Geographic { epsg: Option<u16> },
+    Geographic {
+        /// EPSG code of the geographic CRS; None when user-defined.
+        epsg: Option<u16>,
+    },
 }
 
 impl std::fmt::Display for Crs {
@@ -73,7 +83,9 @@ impl std::fmt::Display for Crs {
 /// The file format, from the file name's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum GridFormat {
+    /// ESRI ASCII grid (`.asc`).
     EsriAscii,
+    /// GeoTIFF (`.tif`, `.tiff`).
     GeoTiff,
     /// Read through GDAL (the `gdal` cargo feature).
     Gdal,
@@ -130,18 +142,26 @@ pub enum Region {
     /// The nodes covering this rectangle of the planner's frame (metres), plus one node each
     /// side, clipped to the grid.
     Area {
+        /// Westernmost x of the rectangle, metres.
         x_min: f64,
+        /// Easternmost x of the rectangle, metres.
         x_max: f64,
+        /// Southernmost y of the rectangle, metres.
         y_min: f64,
+        /// Northernmost y of the rectangle, metres.
         y_max: f64,
     },
     /// Exactly this lattice of the planner's frame (first node and counts, as a plan records
     /// them); its nodes must be nodes of the grid's frame lattice, otherwise
     /// [`SeafloorError::Region`].
     Nodes {
+        /// x of the lattice's first (south-west) node, metres.
         x0: f64,
+        /// y of the lattice's first (south-west) node, metres.
         y0: f64,
+        /// Number of nodes along x.
         nx: usize,
+        /// Number of nodes along y.
         ny: usize,
     },
 }
@@ -149,10 +169,12 @@ pub enum Region {
 /// How to load a grid file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadOptions {
+    /// Sign convention of the file's values (default: elevation).
     pub values: Values,
     /// Mission origin [latitude, longitude], degrees, for a geographic grid (default: its
     /// centre). Refused for other grids.
     pub origin: Option<[f64; 2]>,
+    /// Which nodes to load (default: the whole grid).
     pub region: Region,
     /// The grid's CRS as declared by the user (`seafloor.crs`, e.g. "EPSG:4326"): the CRS of a
     /// file without one (ESRI ASCII), checked against a file's own (see `seafloor::crs`).
@@ -173,12 +195,16 @@ impl Default for LoadOptions {
 /// A loaded floor and where it came from.
 #[derive(Debug, Clone)]
 pub struct LoadedFloor {
+    /// The floor in the planner's frame: elevations (z up, metres) on the region's nodes, or
+    /// for a geographic grid on the metric lattice of the local tangent plane.
     pub floor: Seafloor,
+    /// The file's format.
     pub format: GridFormat,
     /// The grid's CRS (for a geographic grid, the floor is in the local frame at `origin`).
     pub crs: Crs,
     /// Where `crs` came from: the file, a `.prj` sidecar, the declaration, or a guess.
     pub crs_source: CrsSource,
+    /// The sign convention the values were read with (depths were negated).
     pub values: Values,
     /// [lat, lon] of the frame's origin when the grid is geographic.
     pub origin: Option<[f64; 2]>,

@@ -102,9 +102,13 @@ pub const MAX_SEGMENT_SAMPLES: usize = 10_000_000;
 /// The node-centre extent of a grid, metres: [x_min, x_max] × [y_min, y_max].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Extent {
+    /// x of the westernmost node column, metres.
     pub x_min: f64,
+    /// x of the easternmost node column, metres.
     pub x_max: f64,
+    /// y of the southernmost node row, metres.
     pub y_min: f64,
+    /// y of the northernmost node row, metres.
     pub y_max: f64,
 }
 
@@ -123,9 +127,13 @@ impl std::fmt::Display for Extent {
 pub enum Obstacle {
     /// One of the cell's nodes is NODATA.
     Nodata,
-    /// One of the cell's nodes is land: `highest` is the highest node's elevation (≥ 0),
-    /// `at_point` the floor's elevation at the point asked about.
-    Land { highest: f64, at_point: f64 },
+    /// One of the cell's nodes is land (z ≥ 0).
+    Land {
+        /// Elevation of the cell's highest node, metres (≥ 0).
+        highest: f64,
+        /// The floor's elevation Z(x, y) at the point asked about, metres.
+        at_point: f64,
+    },
 }
 
 impl std::fmt::Display for Obstacle {
@@ -273,9 +281,11 @@ impl Seafloor {
         })
     }
 
+    /// Number of node columns (along x).
     pub fn nx(&self) -> usize {
         self.lattice.nx
     }
+    /// Number of node rows (along y).
     pub fn ny(&self) -> usize {
         self.lattice.ny
     }
@@ -287,9 +297,11 @@ impl Seafloor {
     pub fn y0(&self) -> f64 {
         self.lattice.y0
     }
+    /// Node spacing along x, metres.
     pub fn dx(&self) -> f64 {
         self.lattice.dx
     }
+    /// Node spacing along y, metres.
     pub fn dy(&self) -> f64 {
         self.lattice.dy
     }

@@ -13,61 +13,89 @@ pub const MAX_FLOOR_VERTICES: usize = 256;
 /// Quantised elevation marking a NODATA node.
 const NODATA_CODE: u16 = u16::MAX;
 
+/// The data the viewer page shows of a plan, embedded in the page as one JSON object.
 #[derive(Debug, Serialize)]
 pub struct ViewerData {
+    /// The page's title: N, the number of windows, K and the seed.
     pub title: String,
+    /// Version of shoal that wrote the plan.
     pub shoal_version: String,
+    /// Where the plan's scenario came from: "embedded default" or the path of the file.
     pub scenario_source: String,
+    /// The scenario's seed.
     pub seed: u64,
-    /// N, K, δ (s), d_s and d_t (m).
+    /// N, the number of AUVs.
     pub auvs: usize,
+    /// K, the number of steps per window.
     pub steps: usize,
+    /// δ, the time step, seconds.
     pub dt: f64,
+    /// d_s, the acoustic range, metres.
     pub sonar_range: f64,
+    /// d_t, the band tolerance: links are kept in \[d_s − d_t, d_s\], metres.
     pub band_tolerance: f64,
     /// Every AUV's colour on the page, `#rrggbb`: its figures' colour (`figures::vehicle_colour`)
     /// tinted for the dark background ([`auv_colour`]).
     pub auv_colours: Vec<String>,
+    /// The floor mesh around the mission.
     pub floor: FloorData,
+    /// Every window of the plan, in order.
     pub windows: Vec<WindowData>,
+    /// The mission's metrics over every window (`Plan::metrics`).
     pub metrics: Metrics,
 }
 
 /// The floor mesh: `nx × ny` vertices at (x0 + i·dx, y0 + j·dy), row j = 0 southernmost.
 #[derive(Debug, Serialize)]
 pub struct FloorData {
-    /// "synthetic" or "file", and the full grid it was cut from.
+    /// Where the floor came from: "synthetic" or "file".
     pub source: String,
+    /// Number of nodes along x of the full grid the mesh was cut from.
     pub grid_nx: usize,
+    /// Number of nodes along y of the full grid the mesh was cut from.
     pub grid_ny: usize,
+    /// Node spacing along x of the full grid, metres.
     pub grid_dx: f64,
     /// The vertices, written as the six fields `nx`, `ny`, `x0`, `y0`, `dx`, `dy`.
     #[serde(flatten)]
     pub lattice: Lattice,
-    /// Deepest and shallowest data vertex, m.
+    /// Elevation of the deepest data vertex, metres (0 when no vertex has data).
     pub z_lo: f64,
+    /// Elevation of the shallowest data vertex, metres (0 when no vertex has data).
     pub z_hi: f64,
     /// Base64 of nx·ny little-endian u16: z = z_lo + q·(z_hi − z_lo)/65534, q = 65535 NODATA.
     pub z: String,
 }
 
+/// One window as the page shows it: its final-stage paths and its planned links.
 #[derive(Debug, Serialize)]
 pub struct WindowData {
+    /// Window index w, from 0.
     pub index: usize,
+    /// Time of step k = 0 of this window, seconds since the start of the mission.
     pub start_time: f64,
+    /// Status of the final stage: "converged" or "max_iterations".
     pub status: String,
+    /// SCP iterations of the final stage.
     pub iterations: usize,
+    /// Line-of-sight rounds of Algorithm 1, lines 18–22.
     pub los_rounds: usize,
-    /// Final stage: USV [x, y] and AUV [x, y, z] per step k = 0..=K, rounded to 1 cm.
+    /// Final stage: USV \[x, y\] per step k = 0..=K, metres, rounded to 1 cm.
     pub usv: Vec<[f64; 2]>,
+    /// Final stage: per AUV, \[x, y, z\] per step k = 0..=K, metres, rounded to 1 cm.
     pub auvs: Vec<Vec<[f64; 3]>>,
     /// Per step: the planned links [a, b], b = null for the A2U link.
     pub links: Vec<Vec<(usize, Option<usize>)>>,
     /// [k, a, b] of every link-step outside its band.
     pub out_of_band: Vec<(usize, usize, Option<usize>)>,
+    /// This window's metrics.
     pub metrics: Metrics,
 }
 
+/// The viewer data of `plan` on `floor` (the floor it was planned on), with the floor mesh cut
+/// around the vehicles' positions. Fails with [`ViewerError::Plan`] when the plan has no
+/// windows, or a window's final stage has missing or non-finite positions, or links that do
+/// not fit the team.
 pub fn build(plan: &Plan, floor: &Seafloor) -> Result<ViewerData, ViewerError> {
     let n = plan.scenario.team.auvs;
     let windows = plan
