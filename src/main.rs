@@ -483,7 +483,9 @@ fn plan(
     if figures {
         self::plot(&plan, &floor, &out.join("figures"), false)?;
     }
-    let report = shoal::check::check_plan(&plan, &floor);
+    // the check verifies what was written: the file read back, not the plan in memory
+    let written = shoal::output::read_plan(&plan_path)?;
+    let report = shoal::check::check_plan(&written, &floor);
     print!("{}", report.table());
     if report.passed() {
         println!("check: every constraint holds");

@@ -185,3 +185,30 @@ fn regression_closed_stdout_panicked() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// Regression (issue 13): `shoal plan --set 'seafloor.synthetic.size=[5000.0, 5000.0]'` passed
+/// its in-memory check and wrote a plan that `shoal check` could not read ("invalid type:
+/// null, expected f64"): the first guess ran off the grid, the SCP's first merit was infinite,
+/// and serde wrote it as null. The measure is finite now, and `shoal plan` checks the file it
+/// wrote, read back.
+#[test]
+fn regression_a_plan_near_the_grid_edge_reads_back_and_checks() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("grid_edge");
+    let _ = std::fs::remove_dir_all(&dir);
+    let (code, out, err) = common::run(shoal().args([
+        "plan",
+        "--no-plot",
+        "-o",
+        dir.to_str().unwrap(),
+        "--set",
+        "seafloor.synthetic.size=[5000.0, 5000.0]",
+    ]));
+    assert_eq!(code, 0, "{out}\n{err}");
+    let text = std::fs::read_to_string(dir.join("plan.json")).unwrap();
+    assert!(!text.contains("null, ") || !text.contains("\"merit_before\": null"));
+    assert!(!text.contains("\"merit_before\": null") && !text.contains("\"ratio\": null"));
+    let (code, out, err) =
+        common::run(shoal().args(["check", dir.join("plan.json").to_str().unwrap()]));
+    assert_eq!(code, 0, "{out}\n{err}");
+    assert!(out.contains("every constraint holds"), "{out}");
+}

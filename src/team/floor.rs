@@ -121,15 +121,8 @@ pub(super) fn pick_samples(g: &mut [(f64, usize)], count: usize) -> Vec<usize> {
 /// The true violation: worst floor-clearance shortfall (metres) of the segment k−1 → k of AUV
 /// n over the keep-out field, sampled by the seafloor's own 𝓛_r rule, and where it occurs.
 pub(super) fn violation(p: &TeamProblem, t: &Trajectory, n: usize, k: usize) -> (f64, [f64; 3]) {
-    let (a, b) = (t.auv_p[n][k - 1], t.auv_p[n][k]);
-    match p
-        .keep_out
-        .segment_clearance(a, b, p.scenario.acoustic.resolution)
-    {
-        Ok(c) => (p.scenario.auv.floor_clearance - c.min_clearance, c.at),
-        // Outside the grid: only possible for a reference the bounds have not yet acted on.
-        Err(_) => (f64::INFINITY, b),
-    }
+    let (clearance, at) = p.keep_out_clearance(t.auv_p[n][k - 1], t.auv_p[n][k]);
+    (p.scenario.auv.floor_clearance - clearance, at)
 }
 
 /// The message of a violation at `at` on the segment k−1 → k of AUV n: C2_2 with the floor's

@@ -109,7 +109,9 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> Trajectory {
                     let h = toward(p, uk);
                     let ahead = [p[0] + h[0] * dt, p[1] + h[1] * dt, 0.0];
                     let z = (problem.keep_out_linearisation(ahead).0 + height).min(top);
-                    let target = [h[0], h[1], (z - p[2]) / dt];
+                    // the descent takes what the horizontal speed leaves of V_max
+                    let room = (vmax * vmax - h[0] * h[0] - h[1] * h[1]).max(0.0).sqrt();
+                    let target = [h[0], h[1], ((z - p[2]) / dt).clamp(-room, room)];
                     // deadbeat velocity: V[k+1] = vv·V[k] + vu·U[k] = target
                     let input: [f64; 3] =
                         std::array::from_fn(|i| (target[i] - m.vv[i] * v[i]) / m.vu[i]);

@@ -167,11 +167,9 @@ pub(super) fn violations(p: &TeamProblem, t: &Trajectory) -> Vec<(f64, KeepOut)>
     if !l.obstacles {
         return out;
     }
-    let r = p.scenario.acoustic.resolution;
-    let worst = |a: [f64; 3], b: [f64; 3]| match p.keep_out.segment_clearance(a, b, r) {
-        Ok(c) => (KEEP_OUT_MARGIN - c.min_clearance, c.at),
-        // off the grid: only a reference the grid bounds have not yet acted on
-        Err(_) => (f64::INFINITY, b),
+    let worst = |a: [f64; 3], b: [f64; 3]| {
+        let (clearance, at) = p.keep_out_clearance(a, b);
+        (KEEP_OUT_MARGIN - clearance, at)
     };
     for k in 1..=l.k {
         let [a, b] = [k - 1, k].map(|i| [t.usv_p[i][0], t.usv_p[i][1], 0.0]);
