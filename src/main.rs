@@ -222,8 +222,25 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
             let report = shoal::check::check_plan(&p, &floor);
             print!("{}", report.table());
+            for w in &p.warnings {
+                eprintln!("warning: {w}");
+            }
             if report.passed() {
-                println!("{}: every constraint holds", plan.display());
+                let unconverged = p
+                    .windows
+                    .iter()
+                    .flat_map(|w| [&w.step1, &w.final_])
+                    .filter(|st| st.status != "converged")
+                    .count();
+                if unconverged == 0 {
+                    println!("{}: every constraint holds", plan.display());
+                } else {
+                    println!(
+                        "{}: every constraint holds, but {unconverged} stage(s) did not \
+                         converge: feasible, not optimal",
+                        plan.display()
+                    );
+                }
                 Ok(ExitCode::SUCCESS)
             } else {
                 println!("{}: VIOLATED (see FAIL rows)", plan.display());
@@ -487,8 +504,19 @@ fn plan(
     let written = shoal::output::read_plan(&plan_path)?;
     let report = shoal::check::check_plan(&written, &floor);
     print!("{}", report.table());
+    for w in &written.warnings {
+        eprintln!("warning: {w}");
+    }
     if report.passed() {
-        println!("check: every constraint holds");
+        if written.warnings.is_empty() {
+            println!("check: every constraint holds");
+        } else {
+            println!(
+                "check: every constraint holds, but the plan is unconverged in {} stage(s) \
+                 (see the warnings): feasible, not optimal",
+                written.warnings.len()
+            );
+        }
         Ok(ExitCode::SUCCESS)
     } else {
         println!("check: VIOLATED (see FAIL rows)");

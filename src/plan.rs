@@ -35,6 +35,10 @@ pub struct Plan {
     pub windows: Vec<Window>,
     /// Metrics over the whole mission (every window).
     pub metrics: Metrics,
+    /// What the planner warns of: a stage that did not converge (its plan is feasible, not
+    /// the optimum of its window). Empty when there is nothing to say.
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// Where the floor came from and a fingerprint of its grid, so a checker can tell it has the
@@ -222,8 +226,9 @@ pub struct Metrics {
 /// the solve went and the team's paths.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Stage {
-    /// "converged", or "max_iterations" when the SCP stopped at its iteration limit with a
-    /// feasible iterate.
+    /// "converged"; "max_iterations" when the SCP stopped at its iteration limit with a
+    /// feasible iterate; "stalled" when its trust region collapsed (or its penalty ran out)
+    /// first. Only "converged" is the optimum of the window's problem to `scp.tolerance`.
     pub status: String,
     /// SCP iterations (convex subproblems solved, over every line-of-sight round): the length
     /// of `scp`.

@@ -212,6 +212,36 @@ fn stage_record(
     }
 }
 
+/// A warning for every stage that did not converge: its plan is feasible, not the optimum.
+fn unconverged(windows: &[Window], s: &Scenario) -> Vec<String> {
+    let mut out = Vec::new();
+    for w in windows {
+        for (name, st) in [("step 1 (P2)", &w.step1), ("step 3 (P5)", &w.final_)] {
+            let why = match st.status.as_str() {
+                "converged" => continue,
+                "max_iterations" => format!(
+                    "stopped at scp.max_iterations = {} before its predicted decrease fell below \
+                     scp.tolerance = {}",
+                    s.scp.max_iterations, s.scp.tolerance
+                ),
+                "stalled" => format!(
+                    "stalled: its trust region shrank below scp.min_trust_region = {} m (or its \
+                     penalty reached its limit) before its predicted decrease fell below \
+                     scp.tolerance = {}",
+                    s.scp.min_trust_region, s.scp.tolerance
+                ),
+                other => format!("ended with status {other}"),
+            };
+            out.push(format!(
+                "window {}: {name} {why} after {} SCP iterations; the plan is feasible (it \
+                 passes its check) but not the optimum of its window",
+                w.index, st.iterations
+            ));
+        }
+    }
+    out
+}
+
 /// Algorithm 1: Step 1, Step 2, Step 3 with its line-of-sight loop, then the next window from
 /// the last state. `progress` hears of each iteration and step as it ends.
 fn run(
@@ -313,7 +343,9 @@ fn run(
             metrics,
         });
     }
+    let warnings = unconverged(&windows, s);
     Ok(Plan {
+        warnings,
         format: FORMAT.into(),
         shoal_version: env!("CARGO_PKG_VERSION").into(),
         scenario_source: provenance.scenario_source.clone(),

@@ -90,6 +90,7 @@ fn short(status: &str) -> &str {
     match status {
         "converged" => "conv",
         "max_iterations" => "max",
+        "stalled" => "stall",
         s => s,
     }
 }

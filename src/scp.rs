@@ -88,14 +88,19 @@ pub enum ScpStatus {
     Converged,
     /// Iteration limit reached; the returned iterate is feasible within tolerance.
     MaxIterations,
+    /// The trust region collapsed below its minimum (or the penalty reached its largest value
+    /// with no decrease left) before the tolerance was met; the returned iterate is feasible
+    /// within tolerance, and no better one was found near it.
+    Stalled,
 }
 
 impl ScpStatus {
-    /// "converged" or "max_iterations", as the plan file records it.
+    /// "converged", "max_iterations" or "stalled", as the plan file records it.
     pub fn as_str(&self) -> &'static str {
         match self {
             ScpStatus::Converged => "converged",
             ScpStatus::MaxIterations => "max_iterations",
+            ScpStatus::Stalled => "stalled",
         }
     }
 }
@@ -156,6 +161,8 @@ where
         <= settings.feasibility_tol)
         .then(|| (reference.clone(), reference_eval));
 
+    // why the loop ends if it does not converge
+    let mut status = ScpStatus::MaxIterations;
     for it in 0..settings.max_iterations {
         let (candidate, model_merit, report) = problem.solve_model(&reference, radius, penalty)?;
         let candidate_eval = problem.evaluate(&candidate);
@@ -199,6 +206,7 @@ where
                 penalty *= PENALTY_GROWTH;
                 continue;
             }
+            status = ScpStatus::Stalled;
             break; // stuck infeasible: the best feasible iterate, if any, or the error below
         }
 
@@ -230,6 +238,7 @@ where
         iterations += 1;
         observer(&record);
         if radius < settings.min_trust_region {
+            status = ScpStatus::Stalled;
             break;
         }
     }
@@ -242,7 +251,7 @@ where
     if have_feasible_reference && reference_eval.max_violation <= settings.feasibility_tol {
         Ok(ScpOutcome {
             iterate: reference,
-            status: ScpStatus::MaxIterations,
+            status,
             evaluation: reference_eval,
             iterations,
             solve_time_s: start.elapsed().as_secs_f64(),

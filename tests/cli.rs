@@ -212,3 +212,40 @@ fn regression_a_plan_near_the_grid_edge_reads_back_and_checks() {
     assert_eq!(code, 0, "{out}\n{err}");
     assert!(out.contains("every constraint holds"), "{out}");
 }
+
+/// Regression (issue 13): `--set scp.max_iterations=1` printed a clean PASS for a plan that is
+/// feasible but far from converged. The plan now records a warning per unconverged stage,
+/// `shoal plan` prints them, and the check's last line says the plan is unconverged.
+#[test]
+fn regression_an_unconverged_plan_says_so() {
+    let mut s = small(1);
+    s.windows = 1;
+    s.scp.max_iterations = 1;
+    let (p, _) = plan_and_check(&s).expect("plan");
+    assert_eq!(p.windows[0].step1.status, "max_iterations");
+    assert_eq!(p.warnings.len(), 2, "{:?}", p.warnings);
+    assert!(p.warnings[0].starts_with("window 0: step 1 (P2) stopped at scp.max_iterations = 1"));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("unconverged");
+    let _ = std::fs::remove_dir_all(&dir);
+    let (code, out, err) = common::run(shoal().args([
+        "plan",
+        "--no-plot",
+        "-o",
+        dir.to_str().unwrap(),
+        "--set",
+        "scp.max_iterations=1",
+    ]));
+    assert_eq!(code, 0, "{out}\n{err}");
+    assert!(
+        err.contains("warning: window 0: step 3 (P5) stopped at scp.max_iterations"),
+        "{err}"
+    );
+    assert!(
+        out.contains("but the plan is unconverged in 2 stage(s)"),
+        "{out}"
+    );
+    let (code, out, _) =
+        common::run(shoal().args(["check", dir.join("plan.json").to_str().unwrap()]));
+    assert_eq!(code, 0);
+    assert!(out.contains("but 2 stage(s) did not converge"), "{out}");
+}

@@ -288,15 +288,86 @@ impl Checker<'_> {
         }
     }
 
+    /// The stage's SCP log against what the stage claims: as many entries as iterations, every
+    /// number finite, every convex solve usable (Solved or AlmostSolved), and a status its log
+    /// bears out: "converged" ends on the iteration that found no decrease left (not
+    /// accepted); "max_iterations" ran `scp.max_iterations` iterations (in its last
+    /// line-of-sight round, so at least that many); "stalled" ends with a trust region below
+    /// twice `scp.min_trust_region` (it is halved after the entry) or on an iteration that
+    /// found no decrease.
+    fn scp_log(&mut self, w: usize, stage: &str, st: &Stage) {
+        let log = &st.scp;
+        self.require(log.len() == st.iterations, || {
+            format!(
+                "window {w}: {stage} records {} SCP iterations and {} log entries",
+                st.iterations,
+                log.len()
+            )
+        });
+        for (i, it) in log.iter().enumerate() {
+            let numbers = [
+                it.trust_region,
+                it.merit_before,
+                it.merit_after,
+                it.predicted,
+                it.ratio,
+                it.violation,
+                it.solver_time_s,
+            ];
+            self.require(numbers.iter().all(|v| v.is_finite()), || {
+                format!("window {w}: {stage} SCP iteration {i} records a non-finite number")
+            });
+            self.require(
+                matches!(it.solver_status.as_str(), "Solved" | "AlmostSolved"),
+                || {
+                    format!(
+                        "window {w}: {stage} SCP iteration {i}: solver status \"{}\"",
+                        it.solver_status
+                    )
+                },
+            );
+        }
+        let Some(last) = log.last() else {
+            self.require(false, || {
+                format!("window {w}: {stage} has no SCP iteration")
+            });
+            return;
+        };
+        let scp = &self.s.scp;
+        let (holds, claim) = match st.status.as_str() {
+            "converged" => (!last.accepted, "its last iteration was accepted"),
+            "max_iterations" => (
+                st.iterations >= scp.max_iterations,
+                "it ran fewer than scp.max_iterations iterations",
+            ),
+            "stalled" => (
+                !last.accepted || last.trust_region < 2.0 * scp.min_trust_region,
+                "its trust region never collapsed",
+            ),
+            _ => (true, ""),
+        };
+        self.require(holds, || {
+            format!(
+                "window {w}: {stage} status \"{}\", but {claim} (log of {} entries)",
+                st.status,
+                log.len()
+            )
+        });
+    }
+
     /// Lengths and finiteness of one stage of window `w`; `pre` names the stage in messages
     /// ("" for the final stage, "step1 " for Step 1's).
     fn stage_structure(&mut self, w: usize, pre: &str, st: &Stage) {
         let (k, n) = (self.k, self.s.team.auvs);
         let stage = stage_name(pre);
         self.require(
-            st.status == "converged" || st.status == "max_iterations",
+            matches!(
+                st.status.as_str(),
+                "converged" | "max_iterations" | "stalled"
+            ),
             || format!("window {w}: {stage} status \"{}\"", st.status),
         );
+        self.scp_log(w, stage, st);
         let o = st.objective;
         self.require(
             [o.energy, o.depth, o.usv, o.total]

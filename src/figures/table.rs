@@ -24,6 +24,7 @@ fn short(status: &str) -> &str {
     match status {
         "converged" => "conv",
         "max_iterations" => "max iter",
+        "stalled" => "stalled",
         s => s,
     }
 }

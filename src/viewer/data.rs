@@ -74,7 +74,7 @@ pub struct WindowData {
     pub index: usize,
     /// Time of step k = 0 of this window, seconds since the start of the mission.
     pub start_time: f64,
-    /// Status of the final stage: "converged" or "max_iterations".
+    /// Status of the final stage: "converged", "max_iterations" or "stalled".
     pub status: String,
     /// SCP iterations of the final stage.
     pub iterations: usize,

@@ -249,7 +249,7 @@ fn build_with(
                 max_violation: 0.0,
                 usv: usv.clone(),
                 auvs: auvs.clone(),
-                scp: vec![],
+                scp: converged_log(),
             },
             step1: Stage {
                 status: "converged".into(),
@@ -259,7 +259,7 @@ fn build_with(
                 max_violation: 0.0,
                 usv,
                 auvs,
-                scp: vec![],
+                scp: converged_log(),
             },
         });
     }
@@ -284,6 +284,7 @@ fn build_with(
         },
     };
     let mut plan = Plan {
+        warnings: vec![],
         format: FORMAT.into(),
         shoal_version: "test".into(),
         scenario_source: "test".into(),
@@ -805,4 +806,50 @@ fn the_table_is_aligned_and_names_every_family() {
         let result: String = line.chars().skip(col).take(4).collect();
         assert_eq!(result, "PASS", "{line}");
     }
+}
+
+/// The SCP log of a stage that converged at its first iteration: one entry that found no
+/// decrease left (not accepted), its convex solve Solved.
+fn converged_log() -> Vec<shoal::plan::ScpIteration> {
+    vec![shoal::plan::ScpIteration {
+        trust_region: 200.0,
+        merit_before: 0.0,
+        merit_after: 0.0,
+        predicted: 0.0,
+        ratio: 1.0,
+        accepted: false,
+        violation: 0.0,
+        solver_status: "Solved".into(),
+        solver_iterations: 10,
+        solver_time_s: 0.0,
+    }]
+}
+
+/// Regression (issue 13): the checker verified a plan's positions but not what it claims of its
+/// SCP; a stage could say "converged" on a log that says otherwise. Each claim is now held
+/// against the log.
+#[test]
+fn regression_an_scp_status_its_log_contradicts_fails_structure() {
+    let floor = flat();
+    let good = build(&spec(1), &floor);
+    let tamper = |f: &dyn Fn(&mut Plan)| {
+        let mut p = good.clone();
+        f(&mut p);
+        check_plan(&p, &floor)
+    };
+    // "converged" on an iteration that was accepted (a converged SCP ends on one that was not)
+    let r = tamper(&|p| p.windows[0].final_.scp[0].accepted = true);
+    assert_fails_exactly(&r, &["structure"]);
+    // "max_iterations" after 1 of scp.max_iterations iterations
+    let r = tamper(&|p| p.windows[0].step1.status = "max_iterations".into());
+    assert_fails_exactly(&r, &["structure"]);
+    // iterations that disagree with the log's length
+    let r = tamper(&|p| p.windows[0].step1.iterations = 7);
+    assert_fails_exactly(&r, &["structure"]);
+    // a convex solve that failed
+    let r = tamper(&|p| p.windows[0].final_.scp[0].solver_status = "NumericalError".into());
+    assert_fails_exactly(&r, &["structure"]);
+    // "stalled" is a status the planner writes
+    let r = tamper(&|p| p.windows[0].step1.status = "stalled".into());
+    assert!(r.passed(), "\n{}", r.table());
 }
