@@ -34,6 +34,7 @@
 #![allow(clippy::needless_range_loop)]
 #![warn(missing_docs)]
 
+mod atomic_file;
 pub mod check;
 pub mod error;
 pub mod figures;

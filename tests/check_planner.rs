@@ -248,3 +248,33 @@ fn regression_slow_auvs_behind_a_fast_usv_plan() {
         assert_eq!(p.metrics.connected_fraction, 1.0);
     }
 }
+
+/// Regression (issue 13): at `acoustic.resolution` = 1–2 m (default 5 m) the planner wrote
+/// plans that failed its own check (C1_6 by 6.8 m; by 36.8 m with seed 7 and 4 AUVs) after its
+/// SCP stalled: the 12 floor rows of a segment bunched within 12 m of its worst sample, and when
+/// no iterate met every constraint the SCP fell back to its first guess, which broke C1_6. The
+/// rows are now at least 5 m apart whatever r, and a guess that breaks a hard constraint is
+/// never taken for a feasible plan. A finer resolution plans as the default does.
+#[test]
+fn regression_a_finer_resolution_only_makes_the_plan_more_careful() {
+    for (seed, auvs, r) in [(1, 5, 2.0), (1, 5, 1.0), (7, 4, 1.0)] {
+        let mut s = Scenario {
+            seed,
+            ..Scenario::default()
+        };
+        s.team.auvs = auvs;
+        s.acoustic.resolution = r;
+        let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
+        let p = plan_on(&s, &f, source);
+        let check = check_plan(&p, &f);
+        assert!(check.passed(), "seed {seed}, r = {r}:\n{}", check.table());
+        assert_eq!(
+            p.windows[0].step1.status, "converged",
+            "seed {seed}, r = {r}"
+        );
+        assert_eq!(
+            p.windows[0].final_.status, "converged",
+            "seed {seed}, r = {r}"
+        );
+    }
+}

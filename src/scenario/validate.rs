@@ -27,6 +27,11 @@ impl std::fmt::Display for Violation {
 
 /// Largest team the planner accepts (the problem size grows with N²).
 pub const MAX_AUVS: usize = 64;
+/// Finest `acoustic.resolution`, metres: the planner's and the checker's work grow as 1/r, and
+/// at 10⁻¹² the planner once grew to 24 GB.
+pub const MIN_RESOLUTION: f64 = 0.1;
+/// Coarsest `acoustic.resolution`, metres.
+pub const MAX_RESOLUTION: f64 = 100.0;
 /// Largest horizon, in steps.
 pub const MAX_STEPS: usize = 1000;
 /// Largest synthetic grid, in cells per side.
@@ -186,10 +191,15 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         (1..=100).contains(&a.los_rounds),
         "must be an integer from 1 to 100 (P5 solves per window in the line-of-sight loop)",
     );
-    c.positive(
+    c.float(
         "acoustic.resolution",
         a.resolution,
-        "of metres (r, step of the line-of-sight sampling 𝓛_r)",
+        (MIN_RESOLUTION..=MAX_RESOLUTION).contains(&a.resolution),
+        format!(
+            "must be a number of metres from {MIN_RESOLUTION} to {MAX_RESOLUTION} (r, step of the \
+             sampling 𝓛_r of segments and links: finer than 0.1 m only costs time, the floor \
+             being bilinear between its nodes; coarser than 100 m could step over a seamount)"
+        ),
     );
 
     // AUV.

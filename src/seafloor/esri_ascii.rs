@@ -11,7 +11,6 @@
 
 use super::{Lattice, Seafloor, SeafloorError, MAX_ABS_ELEVATION, MAX_NODES_PER_AXIS};
 use std::collections::HashMap;
-use std::io::Write;
 use std::iter::Peekable;
 use std::path::Path;
 
@@ -102,15 +101,7 @@ impl Seafloor {
             path: path.display().to_string(),
             source,
         };
-        let dir = match path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
-        tmp.write_all(self.to_esri_ascii().as_bytes()).map_err(io)?;
-        tmp.as_file().sync_all().map_err(io)?;
-        tmp.persist(path).map_err(|e| io(e.error))?;
-        Ok(())
+        crate::atomic_file::write(path, self.to_esri_ascii().as_bytes()).map_err(io)
     }
 }
 

@@ -135,11 +135,7 @@ pub fn write_geotiff(
         path: name.clone(),
         source,
     };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(io)?;
+    let mut tmp = crate::atomic_file::temp_for(path).map_err(io)?;
     {
         let mut out = BufWriter::new(tmp.as_file_mut());
         let t = |e: tiff::TiffError| fail(format!("cannot encode: {e}"));

@@ -7,11 +7,25 @@ use super::model::Assembly;
 use super::ranges::RANGE_MARGIN;
 use super::TeamProblem;
 use crate::seafloor::Extent;
+use crate::trajectory::Trajectory;
 
 /// How an infeasible C1_4 is named.
 const UNDERWATER: &str = "C1_4 (AUVs stay below the surface clearance)";
 /// How infeasible grid bounds are named.
 const GRID: &str = "the grid bounds (every vehicle stays over the seafloor grid)";
+
+/// The true violation of C1_4 and of the grid bounds by AUV n at step k, metres: how far it is
+/// above the surface clearance, or outside the grid. The model holds both hard, so only a
+/// first guess can violate them.
+pub(super) fn violation(p: &TeamProblem, t: &Trajectory, n: usize, k: usize) -> f64 {
+    let a = t.auv_p[n][k];
+    let e = p.floor.extent();
+    let out = (e.x_min - a[0])
+        .max(a[0] - e.x_max)
+        .max(e.y_min - a[1])
+        .max(a[1] - e.y_max);
+    (a[2] + p.scenario.auv.surface_clearance).max(out).max(0.0)
+}
 
 /// C1_4 for AUV n at step k: z ≤ −surface clearance (tightened by `RANGE_MARGIN`).
 pub(super) fn underwater(p: &TeamProblem, m: &mut Assembly, n: usize, k: usize) {

@@ -23,6 +23,24 @@ pub(super) const FLOOR_MARGIN: f64 = 0.5;
 /// Floor rows per segment (see [`rows`]).
 pub(super) const FLOOR_ROWS: usize = 12;
 
+/// Least distance (m) between two samples that get rows of one segment, whatever the
+/// resolution r of 𝓛_r (5 m, the default r): a finer r makes the measure the SCP and the
+/// checker apply more careful, not the model's rows denser. With rows at every metre (r = 1),
+/// the 12 rows of a 150 m segment covered 12 m about its worst sample, the step broke the
+/// floor elsewhere on the segment, and the SCP stalled or gave up on a feasible problem.
+pub(super) const ROW_SPACING: f64 = 5.0;
+
+/// How many sample indices apart two rows of a segment a → b sampled at `n` intervals must be
+/// (at least 1): [`ROW_SPACING`] over the interval length.
+pub(super) fn apart(a: [f64; 3], b: [f64; 3], n: usize) -> usize {
+    let step = (b[0] - a[0]).hypot(b[1] - a[1]) / n as f64;
+    if step > 0.0 {
+        ((ROW_SPACING / step).round() as usize).max(1)
+    } else {
+        1
+    }
+}
+
 /// The floor slacks' price: the SCP's penalty λ per metre.
 pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
     let l = p.layout;
@@ -59,7 +77,7 @@ pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<
                 let sj = j as f64 / used as f64;
                 g.push((floor_sample(p.keep_out, eps, pa, pb, sj)?.0, j));
             }
-            let picks = pick_samples(&mut g, FLOOR_ROWS);
+            let picks = pick_samples(&mut g, FLOOR_ROWS, apart(pa, pb, used));
             for slot in 0..FLOOR_ROWS {
                 let row_data = match picks.get(slot) {
                     Some(&j) => {
@@ -94,16 +112,16 @@ pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<
     Ok(())
 }
 
-/// Up to `count` sample indices from (g, j) pairs: largest g first, skipping a neighbour (j ± 1)
-/// of one already taken until no other sample is left.
-pub(super) fn pick_samples(g: &mut [(f64, usize)], count: usize) -> Vec<usize> {
+/// Up to `count` sample indices from (g, j) pairs: largest g first, skipping a neighbour
+/// (within `apart` indices) of one already taken until no other sample is left.
+pub(super) fn pick_samples(g: &mut [(f64, usize)], count: usize, apart: usize) -> Vec<usize> {
     g.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
     let mut picks: Vec<usize> = Vec::with_capacity(count);
     for &(_, j) in g.iter() {
         if picks.len() == count {
             break;
         }
-        if !picks.iter().any(|&p| p.abs_diff(j) <= 1) {
+        if !picks.iter().any(|&p| p.abs_diff(j) <= apart) {
             picks.push(j);
         }
     }

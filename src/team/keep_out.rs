@@ -14,7 +14,7 @@
 //! (`violations`). Over a grid without obstacles none of this exists, and the problem
 //! is exactly the one without obstacle handling.
 
-use super::floor::{pick_samples, FLOOR_ROWS};
+use super::floor::{apart, pick_samples, FLOOR_ROWS};
 use super::links::{describe, end_columns, ends};
 use super::model::{Assembly, INACTIVE};
 use super::{TeamProblem, OBSTACLE};
@@ -137,7 +137,7 @@ fn sample_rows(
             j,
         ));
     }
-    let picks = pick_samples(&mut g, count);
+    let picks = pick_samples(&mut g, count, apart(a, b, n));
     (0..count)
         .map(|slot| {
             let Some(&j) = picks.get(slot) else {

@@ -351,7 +351,17 @@ impl ScpProblem for TeamProblem<'_> {
                 let (g, angle) = heading::violation(self, t, n, k);
                 sum += f.max(0.0) + dt * g;
                 worst = worst.max(f).max(angle);
+                // the hard constraints, which only a first guess can break: a guess that does
+                // is never taken for a feasible plan
+                let hard = ranges::violation(self, t, n, k) + bounds::violation(self, t, n, k);
+                sum += hard;
+                worst = worst.max(hard);
             }
+        }
+        for k in 1..=l.k {
+            let v = speed::violation(self, t, k);
+            sum += dt * v;
+            worst = worst.max(v);
         }
         for (v, _) in keep_out::violations(self, t) {
             sum += v.max(0.0);

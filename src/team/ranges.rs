@@ -5,6 +5,7 @@
 
 use super::model::Assembly;
 use super::TeamProblem;
+use crate::trajectory::Trajectory;
 use clarabel::solver::SupportedConeT::SecondOrderConeT;
 
 /// Margin (m) by which the convex model tightens the range bounds and the surface bound, so
@@ -17,6 +18,20 @@ pub(crate) const RANGE_MARGIN: f64 = 1e-3;
 const RANGE_MAX: &str = "C1_5 (every AUV within d_max of the USV)";
 /// How an infeasible C1_6 is named.
 const RANGE_END: &str = "C1_6 (every AUV within d_s of the USV at k = K)";
+
+/// The true violation of C1_5 (k < K) or C1_6 (k = K) by AUV n at step k: metres beyond the
+/// range. The model holds it hard, so only a first guess can violate it.
+pub(super) fn violation(p: &TeamProblem, t: &Trajectory, n: usize, k: usize) -> f64 {
+    let acoustic = &p.scenario.acoustic;
+    let range = if k == p.layout.k {
+        acoustic.sonar_range
+    } else {
+        acoustic.max_range
+    };
+    let (a, u) = (t.auv_p[n][k], t.usv_p[k]);
+    let d = ((a[0] - u[0]).powi(2) + (a[1] - u[1]).powi(2) + a[2] * a[2]).sqrt();
+    (d - range).max(0.0)
+}
 
 /// C1_5 (k < K) or C1_6 (k = K) for AUV n.
 pub(super) fn auv(p: &TeamProblem, m: &mut Assembly, n: usize, k: usize) {

@@ -182,6 +182,9 @@ fn out_of_range_rules() {
         ),
         ("[acoustic]\nmax_range = 149", "acoustic.max_range", 2),
         ("[acoustic]\nresolution = 0", "acoustic.resolution", 2),
+        // regression (issue 13): 1e-12 grew the planner to 24 GB; 1e308 sampled nothing
+        ("[acoustic]\nresolution = 1e-12", "acoustic.resolution", 2),
+        ("[acoustic]\nresolution = 1e308", "acoustic.resolution", 2),
         ("[auv]\nmax_speed = 0", "auv.max_speed", 2),
         ("[auv]\nmax_heading_rate = 0", "auv.max_heading_rate", 2),
         (
