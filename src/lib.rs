@@ -40,6 +40,7 @@ pub mod error;
 pub mod figures;
 pub mod mission;
 pub mod output;
+pub mod output_set;
 pub mod plan;
 pub mod planner;
 pub mod positions;

@@ -2,6 +2,7 @@
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use shoal::scenario::{self, Scenario};
 use shoal::Progress;
 use std::path::{Path, PathBuf};
@@ -49,6 +50,13 @@ enum Command {
         /// Do not draw the figures.
         #[arg(long, overrides_with = "plot")]
         no_plot: bool,
+        /// Print no progress and no tables: only warnings and errors (on stderr).
+        #[arg(short, long)]
+        quiet: bool,
+        /// Print a JSON summary on stdout instead of the tables (for scripts): the files, the
+        /// check's verdict, the warnings, the mission's and each window's metrics.
+        #[arg(long)]
+        json: bool,
     },
     /// Verify every constraint of a plan from the plan file and the seafloor alone.
     Check {
@@ -197,12 +205,19 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             plot: _,
             no_plot,
+            quiet,
+            json,
         } => {
             if let Some(f) = seafloor {
                 set.push(format!("seafloor.file={}", toml_string(&f)));
             }
             let (s, source) = load_scenario(scenario.as_deref(), &set)?;
-            plan(&s, source, set, scenario.as_deref(), &out, !no_plot)
+            let how = How {
+                figures: !no_plot,
+                quiet,
+                json,
+            };
+            plan(&s, source, set, scenario.as_deref(), &out, how)
         }
         Command::Plot {
             plan,
@@ -213,7 +228,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let floor = shoal::check::load_floor(&p, seafloor.as_deref())
                 .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
             let dir = out.unwrap_or_else(|| base_dir(Some(&plan)).join("figures"));
-            plot(&p, &floor, &dir, true).with_context(|| format!("plotting {}", plan.display()))?;
+            plot(&p, &floor, &dir, &dir, true, false)
+                .with_context(|| format!("plotting {}", plan.display()))?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Check { plan, seafloor } => {
@@ -403,23 +419,30 @@ fn view(plan: &Path, seafloor: Option<&Path>, out: &Path) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Draw every figure of `plan` into `dir`; one line per figure when `each`, else one in all.
+/// Draw every figure of `plan` into `dir`, which is `shown` once in place (the staging
+/// directory of `shoal plan`); on stderr, one line per figure with its time when `each`, else
+/// one in all.
 fn plot(
     plan: &shoal::plan::Plan,
     floor: &shoal::seafloor::Seafloor,
     dir: &Path,
+    shown: &Path,
     each: bool,
+    quiet: bool,
 ) -> Result<()> {
     let start = std::time::Instant::now();
     let files = shoal::figures::write_all_with_progress(plan, floor, dir, |done| {
-        if each {
-            println!("  {:<13} {:>6.3} s", done.name, done.seconds);
+        if each && !quiet {
+            eprintln!("  {:<13} {:>6.3} s", done.name, done.seconds);
         }
     })?;
-    println!(
-        "wrote {} figure files (PNG and SVG) in {} in {:.2} s",
+    if quiet {
+        return Ok(());
+    }
+    eprintln!(
+        "drew {} figure files (PNG and SVG) for {} in {:.2} s",
         files.len(),
-        dir.display(),
+        shown.display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())
@@ -440,14 +463,108 @@ fn load_scenario(path: Option<&Path>, set: &[String]) -> Result<(Scenario, Strin
     })
 }
 
+/// How `shoal plan` reports.
+struct How {
+    /// Draw the figures.
+    figures: bool,
+    /// No progress, no tables.
+    quiet: bool,
+    /// A JSON summary on stdout instead of the tables.
+    json: bool,
+}
+
+/// Progress on stderr: a line per step, and on a terminal a spinner with the SCP iteration,
+/// its merit and trust radius (indicatif); nothing when quiet.
+struct Report {
+    bar: Option<ProgressBar>,
+}
+
+impl Report {
+    fn new(quiet: bool) -> Report {
+        let bar = (!quiet).then(|| {
+            let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+            bar.set_style(
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+                    .expect("a valid template"),
+            );
+            bar.enable_steady_tick(std::time::Duration::from_millis(120));
+            bar
+        });
+        Report { bar }
+    }
+
+    /// A line above the spinner (or on stderr when it is hidden: not a terminal).
+    fn line(&self, text: String) {
+        match &self.bar {
+            Some(b) if !b.is_hidden() => b.println(text),
+            Some(_) => eprintln!("{text}"),
+            None => {}
+        }
+    }
+
+    fn event(&self, event: Progress) {
+        match event {
+            Progress::Iteration {
+                window,
+                step,
+                iteration: it,
+            } => {
+                if let Some(b) = &self.bar {
+                    b.set_message(format!(
+                        "window {window}, step {step}: SCP merit {:.6e}, trust radius {:.3} m, \
+                         solver {} ({} IPM iterations)",
+                        it.merit_after, it.trust_region, it.solver_status, it.solver_iterations
+                    ));
+                }
+            }
+            Progress::Step1 { window, stage } => self.line(format!(
+                "  window {window}: step 1 (P2) {} after {} SCP iterations in {:.3} s",
+                stage.status, stage.iterations, stage.solve_time_s
+            )),
+            Progress::Step2 { window, graph } => self.line(format!(
+                "  window {window}: step 2 (P3 + P4) {} graph in {:.4} s",
+                if graph.exact { "exact" } else { "heuristic" },
+                graph.solve_time_s
+            )),
+            Progress::Step3 {
+                window,
+                stage,
+                los_rounds,
+                out_of_band,
+            } => self.line(format!(
+                "  window {window}: step 3 (P5) {} after {} SCP iterations, {los_rounds} \
+                 line-of-sight round(s), {out_of_band} link-step(s) outside their band, in \
+                 {:.3} s",
+                stage.status, stage.iterations, stage.solve_time_s
+            )),
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(b) = &self.bar {
+            b.finish_and_clear();
+        }
+    }
+}
+
 fn plan(
     s: &Scenario,
     source: String,
     overrides: Vec<String>,
     scenario_path: Option<&Path>,
     out: &Path,
-    figures: bool,
+    how: How,
 ) -> Result<ExitCode> {
+    // the output set is staged inside `out` and moved into place after its check; `-o` naming
+    // a file is refused before any planning
+    let set = shoal::output_set::OutputSet::begin(out)?;
+    let staging = set.dir().to_path_buf();
+    ctrlc::set_handler(move || {
+        let _ = std::fs::remove_dir_all(&staging);
+        eprintln!("interrupted: nothing was written (the earlier outputs, if any, are unchanged)");
+        std::process::exit(130);
+    })
+    .context("installing the Ctrl-C handler")?;
     let (floor, floor_source) = shoal::mission::scenario_floor(s, base_dir(scenario_path))?;
     floor_source
         .warnings
@@ -458,57 +575,51 @@ fn plan(
         overrides,
         seafloor: floor_source,
     };
-    eprintln!(
+    let report = Report::new(how.quiet);
+    report.line(format!(
         "planning {} window(s): N = {} AUVs, K = {} steps of δ = {} s, seed {}",
         s.windows, s.team.auvs, s.horizon.steps, s.horizon.dt, s.seed
-    );
-    let plan = shoal::Planner::new(s, &floor)
+    ));
+    let planned = shoal::Planner::new(s, &floor)
         .provenance(provenance)
-        .on_progress(|event| match event {
-            Progress::Iteration { .. } => {}
-            Progress::Step1 { window, stage } => eprintln!(
-                "  window {window}: step 1 (P2) {} after {} SCP iterations in {:.3} s",
-                stage.status, stage.iterations, stage.solve_time_s
-            ),
-            Progress::Step2 { window, graph } => eprintln!(
-                "  window {window}: step 2 (P3 + P4) {} graph in {:.4} s",
-                if graph.exact { "exact" } else { "heuristic" },
-                graph.solve_time_s
-            ),
-            Progress::Step3 {
-                window,
-                stage,
-                los_rounds,
-                out_of_band,
-            } => eprintln!(
-            "  window {window}: step 3 (P5) {} after {} SCP iterations, {los_rounds} line-of-sight \
-             round(s), {out_of_band} link-step(s) outside their band, in {:.3} s",
-            stage.status, stage.iterations, stage.solve_time_s
-        ),
-        })
-        .run()?;
-    let plan_path = out.join("plan.json");
+        .on_progress(|event| report.event(event))
+        .run();
+    report.finish();
+    let plan = planned?;
+    let tables = !how.quiet && !how.json;
+    let plan_path = set.dir().join("plan.json");
     shoal::output::write_plan(&plan, &plan_path)?;
-    let csvs = shoal::output::write_csvs(&plan, out)?;
-    println!("{}", shoal::report::summary_table(&plan));
-    println!(
-        "wrote {} and {} CSV files in {}",
-        plan_path.display(),
-        csvs.len(),
-        out.display()
-    );
-    if figures {
-        self::plot(&plan, &floor, &out.join("figures"), false)?;
+    let csvs = shoal::output::write_csvs(&plan, set.dir())?;
+    if tables {
+        println!("{}", shoal::report::summary_table(&plan));
+    }
+    if how.figures {
+        let dir = set.dir().join("figures");
+        self::plot(&plan, &floor, &dir, &out.join("figures"), false, how.quiet)?;
     }
     // the check verifies what was written: the file read back, not the plan in memory
     let written = shoal::output::read_plan(&plan_path)?;
-    let report = shoal::check::check_plan(&written, &floor);
-    print!("{}", report.table());
+    let check = shoal::check::check_plan(&written, &floor);
+    let files = set.commit(check.passed())?;
     for w in &written.warnings {
         eprintln!("warning: {w}");
     }
-    if report.passed() {
-        if written.warnings.is_empty() {
+    if how.json {
+        println!("{}", json_summary(&written, out, &files, &check));
+    }
+    if tables {
+        println!(
+            "wrote {} with {} CSV files{} in {} ({} files)",
+            out.join("plan.json").display(),
+            csvs.len(),
+            if how.figures { " and the figures" } else { "" },
+            out.display(),
+            files.len()
+        );
+        print!("{}", check.table());
+        if !check.passed() {
+            println!("check: VIOLATED (see FAIL rows)");
+        } else if written.warnings.is_empty() {
             println!("check: every constraint holds");
         } else {
             println!(
@@ -517,9 +628,45 @@ fn plan(
                 written.warnings.len()
             );
         }
-        Ok(ExitCode::SUCCESS)
-    } else {
-        println!("check: VIOLATED (see FAIL rows)");
-        Ok(ExitCode::from(1))
+    } else if !check.passed() {
+        eprintln!("check: VIOLATED (run `shoal check` on the plan for the table)");
     }
+    Ok(if check.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+/// The `--json` summary of a plan written in `out`.
+fn json_summary(
+    p: &shoal::Plan,
+    out: &Path,
+    files: &[String],
+    check: &shoal::check::CheckReport,
+) -> String {
+    let windows: Vec<serde_json::Value> = p
+        .windows
+        .iter()
+        .map(|w| {
+            serde_json::json!({
+                "index": w.index,
+                "step1": { "status": w.step1.status, "iterations": w.step1.iterations },
+                "step3": { "status": w.final_.status, "iterations": w.final_.iterations },
+                "out_of_band": w.links.out_of_band.len(),
+                "metrics": w.metrics,
+            })
+        })
+        .collect();
+    let failing: Vec<&str> = check.failures().iter().map(|f| f.name).collect();
+    serde_json::to_string_pretty(&serde_json::json!({
+        "plan": out.join("plan.json"),
+        "files": files,
+        "seed": p.scenario.seed,
+        "check": { "passed": check.passed(), "failing": failing },
+        "warnings": p.warnings,
+        "metrics": p.metrics,
+        "windows": windows,
+    }))
+    .expect("a summary serialises")
 }

@@ -133,10 +133,20 @@ pub fn check_start(
         }
         let z = floor.elevation(p[0], p[1])?;
         if p[2] < z + s.auv.floor_clearance - tol {
-            return bad(format!(
-                "AUV {n} at z = {:.2} m is less than ε = {} m above the floor (z = {z:.2} m) (C2_2)",
-                p[2], s.auv.floor_clearance
-            ));
+            let (h, eps) = (p[2] - z, s.auv.floor_clearance);
+            return bad(if h < 0.0 {
+                format!(
+                    "AUV {n} at z = {:.2} m is {:.2} m below the floor (z = {z:.2} m); it needs \
+                     ε = {eps} m of clearance above it (C2_2)",
+                    p[2], -h
+                )
+            } else {
+                format!(
+                    "AUV {n} at z = {:.2} m is {h:.2} m above the floor (z = {z:.2} m), less \
+                     than ε = {eps} m (C2_2)",
+                    p[2]
+                )
+            });
         }
         let field = keep_out.elevation(p[0], p[1])?;
         if p[2] < field + s.auv.floor_clearance - tol {

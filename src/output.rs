@@ -36,14 +36,24 @@ pub enum OutputError {
         /// What is wrong with it.
         why: String,
     },
+    /// The output directory given exists and is a file.
+    #[error("the output {path} exists and is not a directory; give the directory to write the plan, CSVs and figures in")]
+    NotADirectory {
+        /// The path given.
+        path: PathBuf,
+    },
 }
 
-/// Write `bytes` to `path` atomically (temporary file in the same directory, then rename).
+/// Write `bytes` to `path` atomically (temporary file in the same directory, then rename),
+/// creating its directory if missing.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
     let err = |source| OutputError::Write {
         path: path.to_path_buf(),
         source,
     };
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(err)?;
+    }
     crate::atomic_file::write(path, bytes).map_err(err)
 }
 
@@ -71,7 +81,12 @@ pub fn read_plan(path: &Path) -> Result<Plan, OutputError> {
         Some(other) => {
             return Err(OutputError::Parse {
                 path: path.to_path_buf(),
-                why: format!("format \"{other}\" is not \"{}\"", crate::plan::FORMAT),
+                why: format!(
+                    "format \"{other}\" is not \"{}\", the format this shoal ({}) reads; plan \
+                     the scenario again with this version (`shoal plan`)",
+                    crate::plan::FORMAT,
+                    env!("CARGO_PKG_VERSION")
+                ),
             })
         }
         None => {

@@ -7,6 +7,13 @@ use common::{plan_and_check, plan_scenario, shoal};
 use shoal::scenario::{self, Scenario};
 use shoal::PlanError;
 
+/// An empty directory for a test's outputs.
+fn fresh_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
 /// A small scenario that still exercises every constraint family: 2 AUVs, 8 steps, 2 windows.
 fn small(seed: u64) -> Scenario {
     scenario::default_with(&[
@@ -193,8 +200,7 @@ fn regression_closed_stdout_panicked() {
 /// wrote, read back.
 #[test]
 fn regression_a_plan_near_the_grid_edge_reads_back_and_checks() {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("grid_edge");
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = fresh_dir("grid_edge");
     let (code, out, err) = common::run(shoal().args([
         "plan",
         "--no-plot",
@@ -225,8 +231,7 @@ fn regression_an_unconverged_plan_says_so() {
     assert_eq!(p.windows[0].step1.status, "max_iterations");
     assert_eq!(p.warnings.len(), 2, "{:?}", p.warnings);
     assert!(p.warnings[0].starts_with("window 0: step 1 (P2) stopped at scp.max_iterations = 1"));
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("unconverged");
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = fresh_dir("unconverged");
     let (code, out, err) = common::run(shoal().args([
         "plan",
         "--no-plot",
@@ -248,4 +253,112 @@ fn regression_an_unconverged_plan_says_so() {
         common::run(shoal().args(["check", dir.join("plan.json").to_str().unwrap()]));
     assert_eq!(code, 0);
     assert!(out.contains("but 2 stage(s) did not converge"), "{out}");
+}
+
+/// Regression (issue 13): an interrupted `shoal plan` left hidden temporary files (up to
+/// 840 KB) and a mixed set (a new plan.json beside an earlier run's CSVs). The set is now
+/// staged inside the output directory and moved into place after its check; Ctrl-C removes the
+/// staging directory and leaves the earlier set as it was.
+#[cfg(unix)]
+#[test]
+fn regression_an_interrupted_plan_leaves_the_earlier_outputs_untouched() {
+    use std::io::BufRead;
+    let dir = fresh_dir("interrupted");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("plan.json"), "earlier").unwrap();
+    let mut child = shoal()
+        .args(["plan", "--no-plot", "-o", dir.to_str().unwrap()])
+        .args(["--set", "team.auvs=20", "--set", "horizon.steps=40"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // wait until it plans (its handler is set before it prints this)
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    while !line.starts_with("planning") {
+        line.clear();
+        assert!(
+            err.read_line(&mut line).unwrap() > 0,
+            "shoal plan ended early"
+        );
+    }
+    let pid = child.id() as libc::pid_t;
+    // SAFETY: sending a signal to our own child process
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGINT) }, 0);
+    let status = child.wait().unwrap();
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
+    assert_eq!(status.code(), Some(130), "{rest}");
+    assert!(rest.contains("interrupted: nothing was written"), "{rest}");
+    let left: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(left, ["plan.json"], "only the earlier file is left");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("plan.json")).unwrap(),
+        "earlier"
+    );
+}
+
+/// Issue 13: `--json` prints one JSON summary on stdout for scripts (nothing else there), and
+/// `--quiet` prints nothing on stdout and no progress.
+#[test]
+fn plan_json_and_quiet() {
+    let dir = fresh_dir("json_quiet");
+    let args = ["plan", "--no-plot", "-o", dir.to_str().unwrap()];
+    let small = ["--set", "team.auvs=2", "--set", "horizon.steps=6"];
+    let (code, out, err) = common::run(shoal().args(args).args(small).arg("--json"));
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("stdout is one JSON document");
+    assert_eq!(v["check"]["passed"], true);
+    assert_eq!(v["seed"], 1);
+    let files: Vec<&str> = v["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect();
+    assert_eq!(files, ["auv0.csv", "auv1.csv", "plan.json", "usv.csv"]);
+    assert_eq!(v["windows"][0]["step3"]["status"], "converged");
+    assert!(v["metrics"]["explored_area_km2"].as_f64().unwrap() > 0.0);
+    let (code, out, err) = common::run(shoal().args(args).args(small).arg("--quiet"));
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out, "");
+    assert!(!err.contains("window 0"), "{err}");
+}
+
+/// Regression (issue 13): an AUV starting 35 m below the floor was said to be "less than ε
+/// above" it.
+#[test]
+fn regression_an_auv_below_the_floor_is_said_to_be_below_it() {
+    let mut s = small(1);
+    s.windows = 1;
+    s.initial = Some(scenario::Initial {
+        usv: [0.0, 0.0],
+        auvs: vec![[10.0, 0.0, -40.0], [0.0, 20.0, -140.0]],
+    });
+    let msg = plan_scenario(&s).map(|(p, _)| p).unwrap_err().to_string();
+    assert!(
+        msg.contains("AUV 1 at z = -140.00 m is") && msg.contains("m below the floor"),
+        "{msg}"
+    );
+    assert!(!msg.contains("less than"), "{msg}");
+}
+
+/// Regression (issue 13): a plan of another format was refused without saying what to do.
+#[test]
+fn regression_a_plan_of_another_format_says_to_plan_again() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("old_format");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("plan.json");
+    std::fs::write(&path, r#"{"format": "shoal-plan/1"}"#).unwrap();
+    let msg = shoal::output::read_plan(&path).unwrap_err().to_string();
+    assert!(
+        msg.contains("\"shoal-plan/1\" is not \"shoal-plan/2\""),
+        "{msg}"
+    );
+    assert!(msg.contains("plan the scenario again"), "{msg}");
 }

@@ -207,14 +207,7 @@ impl Parser<'_> {
             },
         };
         Ok(Header {
-            lattice: Lattice {
-                nx,
-                ny,
-                x0,
-                y0,
-                dx,
-                dy,
-            },
+            lattice: Lattice::new(nx, ny, x0, y0, dx, dy),
             nodata,
             end,
         })
