@@ -60,6 +60,7 @@ enum Command {
     },
     /// Verify every constraint of a plan from the plan file and the seafloor alone.
     Check {
+        /// The plan file (plan.json) to check.
         plan: PathBuf,
         /// Check against this seafloor grid instead of the one the plan names.
         #[arg(long)]
@@ -67,6 +68,7 @@ enum Command {
     },
     /// Write one self-contained HTML file showing a plan in 3D (opens offline in a browser).
     View {
+        /// The plan file (plan.json) to show.
         plan: PathBuf,
         /// The HTML file to write.
         #[arg(short, long, default_value = "mission.html")]
@@ -77,6 +79,7 @@ enum Command {
     },
     /// Draw the figures of a plan (PNG and SVG): floor, paths, links, time series, metrics.
     Plot {
+        /// The plan file (plan.json) to draw.
         plan: PathBuf,
         /// Output directory; default: `figures` beside the plan file.
         #[arg(short, long)]
@@ -92,8 +95,11 @@ enum Command {
         /// The plan file (plan.json).
         plan: PathBuf,
         /// The CSV file to write.
-        #[arg(long, value_name = "OUT")]
-        csv: PathBuf,
+        #[arg(value_name = "OUT.csv", required_unless_present = "csv")]
+        out: Option<PathBuf>,
+        /// The CSV file to write (the same as OUT.csv, the older spelling).
+        #[arg(long, value_name = "OUT.csv", conflicts_with = "out")]
+        csv: Option<PathBuf>,
     },
     /// Seafloor tools.
     Seafloor {
@@ -112,8 +118,10 @@ enum SeafloorCommand {
     Export {
         /// Scenario file; the embedded default when absent.
         scenario: Option<PathBuf>,
+        /// Override one scenario key, e.g. --set seed=3 (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// The grid file to write: .asc (ESRI ASCII) or .tif/.tiff (GeoTIFF).
         #[arg(short, long, default_value = "seafloor.asc")]
         out: PathBuf,
         /// Export this grid file (in its own CRS) instead of the scenario's floor.
@@ -268,7 +276,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             seafloor,
         } => view(&plan, seafloor.as_deref(), &out),
-        Command::Export { plan, csv } => {
+        Command::Export { plan, out, csv } => {
+            let csv = out.or(csv).expect("clap requires OUT.csv or --csv");
             let p = shoal::output::read_plan(&plan)?;
             let (rows, georef) = shoal::positions::write_csv(&p, &csv)
                 .with_context(|| format!("exporting the positions of {}", plan.display()))?;

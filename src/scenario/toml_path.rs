@@ -184,6 +184,21 @@ pub(super) fn describe_found(node: Node) -> String {
         Node::Item(Item::None) => return "nothing".to_string(),
     };
     match v {
+        // a `--set` value that TOML could not read as a number stays a string: say so when it
+        // is digits beyond TOML's integers (a u64 seed, say)
+        Value::String(s)
+            if !s.value().is_empty()
+                && s.value()
+                    .trim_start_matches('-')
+                    .bytes()
+                    .all(|b| b.is_ascii_digit()) =>
+        {
+            format!(
+                "{}, beyond TOML's integers (at most {})",
+                s.value(),
+                i64::MAX
+            )
+        }
         Value::String(s) => format!("string {:?}", s.value()),
         Value::Integer(i) => format!("integer {}", i.value()),
         Value::Float(f) => format!("number {}", f.value()),

@@ -514,3 +514,17 @@ fn errors_are_deterministic() {
     assert_eq!(v[0].key, "windows");
     assert_eq!(v[1].key, "team.auvs");
 }
+
+/// Regression (issue 13): a seed beyond TOML's integers (a u64) was "found string".
+#[test]
+fn regression_a_u64_seed_is_not_called_a_string() {
+    let e = crate::scenario::default_with(&["seed=18446744073709551615".into()])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(
+            "found 18446744073709551615, beyond TOML's integers (at most 9223372036854775807)"
+        ),
+        "{e}"
+    );
+}
