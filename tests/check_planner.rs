@@ -172,6 +172,47 @@ mod random {
                 }
             }
         }
+
+        /// Issue 13: scenarios from the whole space users set (vehicle speeds 0.2–3 m/s, δ
+        /// 10–200 s, d_s 60–400 m, teams and horizons small enough for CI;
+        /// `examples/feasible_sweep.rs` draws from all of it) end in a plan that passes its
+        /// check, or in an error about the mission's data (a start that cannot be, no start
+        /// point); never a convex subproblem infeasible because of its reference.
+        #[test]
+        fn every_feasible_mission_plans(
+            seed in 0u64..1_000_000,
+            auv_speed in 0.2f64..3.0,
+            usv_speed in 0.2f64..3.0,
+            auvs in 1usize..=5,
+            steps in 2usize..=10,
+            dt in 10.0f64..200.0,
+            ds in 60.0f64..400.0,
+            windows in 1usize..=2,
+        ) {
+            let mut s = Scenario { seed, windows, ..Scenario::default() };
+            s.auv.max_speed = auv_speed;
+            s.usv.max_speed = usv_speed;
+            s.team.auvs = auvs;
+            s.horizon.steps = steps;
+            s.horizon.dt = dt;
+            s.acoustic.sonar_range = ds;
+            s.acoustic.band_tolerance = 0.2 * ds;
+            s.acoustic.max_range = s.acoustic.max_range.max(2.0 * ds);
+            let (f, _) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
+            match shoal::Planner::new(&s, &f).run() {
+                Ok(p) => {
+                    let r = check_plan(&p, &f);
+                    prop_assert!(r.passed(), "{s:?}:\n{}", r.table());
+                }
+                Err(e) => {
+                    let data = matches!(
+                        e,
+                        PlanError::InvalidStart { .. } | PlanError::NoInitialPosition(_)
+                    );
+                    prop_assert!(data, "a feasible mission refused: {e}\n{s:?}");
+                }
+            }
+        }
     }
 }
 
