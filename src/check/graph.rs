@@ -147,7 +147,7 @@ impl Checker<'_> {
     /// Line of sight of the segment p → q (see the module docs).
     fn los(&self, p: [f64; 3], q: [f64; 3]) -> Result<SegmentClearance, String> {
         self.floor
-            .segment_clearance(p, q, self.s.acoustic.resolution)
+            .segment_clearance(p, q, self.resolution())
             .map_err(|e| e.to_string())
     }
 

@@ -13,7 +13,7 @@ impl Checker<'_> {
     /// Why the segment p → q crosses an obstacle: the first such sample, where and what it is
     /// over. None when every sample is clear.
     pub(super) fn crossing(&self, p: [f64; 3], q: [f64; 3]) -> Option<String> {
-        let r = self.s.acoustic.resolution;
+        let r = self.resolution();
         let Some(samples) = own_samples(p, q, r) else {
             return Some(format!("the segment cannot be sampled at r = {r} m"));
         };
@@ -34,7 +34,7 @@ impl Checker<'_> {
     /// Records every sample of p → q in the obstacle family `f` (margin −1 over an obstacle or
     /// off the grid, 0 when clear); `who` names the segment.
     fn record_samples(&self, f: &mut Family, p: [f64; 3], q: [f64; 3], who: impl Fn() -> String) {
-        let r = self.s.acoustic.resolution;
+        let r = self.resolution();
         let Some(samples) = own_samples(p, q, r) else {
             f.record(f64::NEG_INFINITY, || {
                 format!("{}: cannot sample this segment at r = {r} m", who())

@@ -167,6 +167,11 @@ pub(super) fn run(plan: &Plan, floor: &Seafloor) -> CheckReport {
 }
 
 impl Checker<'_> {
+    /// The resolution the checker samples at: the plan's r, or `CHECK_RESOLUTION` if finer.
+    pub(super) fn resolution(&self) -> f64 {
+        self.s.acoustic.resolution.min(CHECK_RESOLUTION)
+    }
+
     pub(super) fn require(&mut self, ok: bool, problem: impl FnOnce() -> String) {
         self.structural_checks += 1;
         if !ok {
@@ -421,6 +426,11 @@ impl Checker<'_> {
         }
     }
 }
+
+/// The checker samples every segment and link at least every `CHECK_RESOLUTION` metres (the
+/// default r), whatever resolution the plan claims: a plan made at a coarse r (the plan file
+/// says 1e308, say) is still held to the floor between its own samples.
+pub(super) const CHECK_RESOLUTION: f64 = 5.0;
 
 /// The samples of 𝓛_r on a → b: n + 1 evenly spaced points, n = max(1, ⌈horizontal length / r⌉),
 /// each kept inside the segment's bounding box. None when r is not positive or n is absurd.

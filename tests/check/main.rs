@@ -853,3 +853,30 @@ fn regression_an_scp_status_its_log_contradicts_fails_structure() {
     let r = tamper(&|p| p.windows[0].step1.status = "stalled".into());
     assert!(r.passed(), "\n{}", r.table());
 }
+
+/// Regression (issue 13): the checker sampled segments at the resolution the plan claims, so a
+/// plan made at a coarse r (1e308 passed) was never held to the floor between its samples. It
+/// now samples at least every 5 m: the seamount between two waypoints fails the check however
+/// coarse the plan's r.
+#[test]
+fn regression_a_coarse_resolution_does_not_hide_the_floor() {
+    let mut sp = spec(1);
+    sp.s.acoustic.resolution = 1.0;
+    let probe = build(&sp, &flat());
+    let (a, b) = (
+        probe.windows[0].final_.auvs[0].position[1],
+        probe.windows[0].final_.auvs[0].position[2],
+    );
+    // a 5 m pyramid at 1/3 of the segment, away from both ends and from its midpoint
+    let peak = [a[0] + (b[0] - a[0]) / 3.0, a[1] + (b[1] - a[1]) / 3.0];
+    let d = 5.0;
+    let floor = grid(peak[0] - 60.0 * d, peak[1] - 60.0 * d, d, 121, |x, y| {
+        let at_peak = (x - peak[0]).abs() < 1e-6 && (y - peak[1]).abs() < 1e-6;
+        Some(if at_peak { -10.0 } else { -100.0 })
+    });
+    let mut plan = build(&sp, &floor);
+    plan.scenario.acoustic.resolution = 1e308;
+    let r = check_plan(&plan, &floor);
+    let seg = r.family("C2_2 floor clearance (segments)").unwrap();
+    assert!(seg.worst_margin < -10.0, "{seg:?}");
+}
