@@ -83,6 +83,7 @@
 //! | recorded surge speed / heading | [`DERIVED_TOL`] = 1e-9 (m/s, rad) | pure arithmetic |
 //! | window chain | [`CHAIN_TOL`] = 1e-9 (m, m/s) | a copy |
 //! | objective | [`OBJECTIVE_REL_TOL`] = 1e-6 relative | |
+//! | recorded metrics (energy, heights, heading rate; `metrics`) | 1e-6 relative | recomputed sums |
 //! | A2A Hamiltonian path | 0 problems | combinatorial facts |
 //! | A2U link | [`A2U_TIE_TOL`] = 1e-9 m | ties between equally near AUVs |
 //! | link bands within [0, d_s] | [`BAND_LIMIT_TOL`] = 1e-9 m | recorded numbers |
@@ -92,6 +93,7 @@
 
 mod floor;
 mod graph;
+mod metrics;
 pub mod model;
 mod objective;
 mod obstacles;

@@ -154,6 +154,7 @@ pub(super) fn run(plan: &Plan, floor: &Seafloor) -> CheckReport {
     families.push(c.heading_rate());
     families.extend(c.recorded());
     families.push(c.chain());
+    families.push(c.metrics());
     let (objective, objectives) = c.objective();
     families.push(objective);
     families.extend(c.graph_families());

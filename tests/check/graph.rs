@@ -492,6 +492,7 @@ fn the_final_stage_is_the_plan() {
     let mut plan = build(&sp, &floor);
     plan.windows[0].final_ = build(&slow, &floor).windows[0].final_.clone();
     fill_graph(&mut plan);
+    super::record_metrics(&mut plan, &floor);
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["window chain"]);
     let f = r.family("window chain").unwrap();

@@ -297,7 +297,31 @@ fn build_with(
         metrics: Default::default(),
     };
     graph::fill_graph(&mut plan);
+    record_metrics(&mut plan, floor);
     plan
+}
+
+/// The metrics the planner records, for the plan's final stages (the "recorded metrics"
+/// family holds them against its own recomputation).
+fn record_metrics(plan: &mut Plan, floor: &Seafloor) {
+    use shoal::metrics::{mission_metrics, MetricParams};
+    let s = &plan.scenario;
+    let p = MetricParams {
+        dt: s.horizon.dt,
+        sonar_range: s.acoustic.sonar_range,
+        resolution: s.acoustic.resolution,
+        swath_width: s.auv.swath_width,
+    };
+    for w in &mut plan.windows {
+        w.metrics = mission_metrics(&[(&w.final_, &w.links.links)], floor, &p, &[[0.0; 3]]);
+    }
+    let parts: Vec<_> = plan
+        .windows
+        .iter()
+        .map(|w| (&w.final_, w.links.links.as_slice()))
+        .collect();
+    let times = vec![[0.0; 3]; parts.len()];
+    plan.metrics = mission_metrics(&parts, floor, &p, &times);
 }
 
 fn build(spec: &Spec, floor: &Seafloor) -> Plan {
@@ -596,6 +620,8 @@ fn the_stored_heading_is_not_trusted() {
     let mut plan = build(&sp, &floor);
     let a = &mut plan.windows[0].final_.auvs[0];
     a.heading[3] = a.heading[2];
+    // the forger also records the heading rate the doctored headings give
+    record_metrics(&mut plan, &floor);
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["C1_14 heading rate", "recorded heading"]);
 }
@@ -659,8 +685,9 @@ fn a_tampered_input_fails_the_dynamics_only() {
         let w = &mut plan.windows[1];
         let st = if step1 { &mut w.step1 } else { &mut w.final_ };
         st.auvs[0].input[1][0] += 0.01;
-        // a careful forger also fixes the stored objective
+        // a careful forger also fixes the stored objective and the recorded metrics
         st.objective = objective(&plan.scenario, &floor, &st.usv, &st.auvs);
+        record_metrics(&mut plan, &floor);
         let r = check_plan(&plan, &floor);
         assert_fails_exactly(
             &r,
@@ -718,8 +745,9 @@ fn another_floor_fails_the_identity_family() {
     let plan = build(&spec(1), &floor);
     let other = grid(-300.0, -300.0, 5.0, 121, |_, _| Some(-100.5));
     let r = check_plan(&plan, &other);
-    // the height-above-floor term of the objective is evaluated on the floor, so it differs too
-    assert_fails_exactly(&r, &["seafloor identity", "objective"]);
+    // the height-above-floor term of the objective is evaluated on the floor, so it differs too,
+    // and so do the recorded heights above it
+    assert_fails_exactly(&r, &["seafloor identity", "recorded metrics", "objective"]);
     let f = r.family("seafloor identity").unwrap();
     assert!(
         f.where_.contains("not the floor the plan was made on"),
@@ -879,4 +907,23 @@ fn regression_a_coarse_resolution_does_not_hide_the_floor() {
     let r = check_plan(&plan, &floor);
     let seg = r.family("C2_2 floor clearance (segments)").unwrap();
     assert!(seg.worst_margin < -10.0, "{seg:?}");
+}
+
+/// Regression (issue 13): the checker verified a plan's paths but not the metrics it records;
+/// a plan could claim any input energy, height or heading rate.
+#[test]
+fn regression_recorded_metrics_are_recomputed() {
+    let floor = flat();
+    let good = build(&spec(2), &floor);
+    assert!(check_plan(&good, &floor).passed());
+    for tamper in [
+        (|p: &mut Plan| p.metrics.input_energy *= 0.5) as fn(&mut Plan),
+        |p| p.windows[1].metrics.mean_height += 1.0,
+        |p| p.windows[0].metrics.min_height -= 1.0,
+        |p| p.metrics.max_heading_rate += 1e-3,
+    ] {
+        let mut p = good.clone();
+        tamper(&mut p);
+        assert_fails_exactly(&check_plan(&p, &floor), &["recorded metrics"]);
+    }
 }
