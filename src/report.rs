@@ -15,6 +15,7 @@ pub fn summary_table(plan: &Plan) -> String {
         "height",
         "min h",
         "USV moved",
+        "USV path",
         "explored",
         "connected",
         "chain",
@@ -30,6 +31,7 @@ pub fn summary_table(plan: &Plan) -> String {
         "m",
         "m",
         "m",
+        "m",
         "km²",
         "%",
         "%",
@@ -38,6 +40,7 @@ pub fn summary_table(plan: &Plan) -> String {
         "s",
     ];
     for row in [header, units] {
+        let row: [&str; 14] = row;
         let _ = writeln!(t, "{}", line(&row.map(String::from)));
     }
     for w in &plan.windows {
@@ -45,6 +48,7 @@ pub fn summary_table(plan: &Plan) -> String {
         let p0 = st.usv.position.first().copied().unwrap_or([0.0; 2]);
         let pk = st.usv.position.last().copied().unwrap_or([0.0; 2]);
         let moved = (pk[0] - p0[0]).hypot(pk[1] - p0[1]);
+        let travelled = path_length(&st.usv.position);
         let _ = writeln!(
             t,
             "{}",
@@ -52,7 +56,7 @@ pub fn summary_table(plan: &Plan) -> String {
                 w.index.to_string(),
                 format!("{}/{}", short(&w.step1.status), w.step1.iterations),
                 format!("{}/{}", short(&st.status), st.iterations),
-                moved,
+                [moved, travelled],
                 w.links.out_of_band.len(),
                 &w.metrics
             ))
@@ -71,6 +75,11 @@ pub fn summary_table(plan: &Plan) -> String {
         _ => 0.0,
     };
     let off: usize = plan.windows.iter().map(|w| w.links.out_of_band.len()).sum();
+    let travelled: f64 = plan
+        .windows
+        .iter()
+        .map(|w| path_length(&w.final_.usv.position))
+        .sum();
     let _ = writeln!(
         t,
         "{}",
@@ -78,12 +87,19 @@ pub fn summary_table(plan: &Plan) -> String {
             "all".into(),
             String::new(),
             String::new(),
-            moved,
+            [moved, travelled],
             off,
             &plan.metrics
         ))
     );
     t
+}
+
+/// Length of a polyline of USV positions, metres.
+fn path_length(p: &[[f64; 2]]) -> f64 {
+    p.windows(2)
+        .map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]))
+        .sum()
 }
 
 fn short(status: &str) -> &str {
@@ -99,10 +115,10 @@ fn row(
     window: String,
     step1: String,
     step3: String,
-    moved: f64,
+    [moved, travelled]: [f64; 2],
     off_band: usize,
     m: &Metrics,
-) -> [String; 13] {
+) -> [String; 14] {
     [
         window,
         step1,
@@ -111,6 +127,7 @@ fn row(
         format!("{:.1}", m.mean_height),
         format!("{:.1}", m.min_height),
         format!("{moved:.0}"),
+        format!("{travelled:.0}"),
         format!("{:.3}", m.explored_area_km2),
         format!("{:.1}", 100.0 * m.connected_fraction),
         format!("{:.1}", 100.0 * m.chain_fraction),
@@ -120,8 +137,8 @@ fn row(
     ]
 }
 
-fn line(cells: &[String; 13]) -> String {
-    const WIDTH: [usize; 13] = [6, 11, 11, 9, 7, 7, 9, 9, 9, 6, 8, 9, 7];
+fn line(cells: &[String; 14]) -> String {
+    const WIDTH: [usize; 14] = [6, 11, 11, 9, 7, 7, 9, 8, 9, 9, 6, 8, 9, 7];
     cells
         .iter()
         .zip(WIDTH)
