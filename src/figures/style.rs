@@ -63,12 +63,24 @@ const PALETTE: [RGBColor; 20] = [
     RGBColor(0x63, 0x63, 0x63),
 ];
 
-/// The colour of a vehicle in every figure: `None` is the USV (black), `Some(n)` AUV n.
+/// The colour of a vehicle in every figure: `None` is the USV (black), `Some(n)` AUV n. AUVs
+/// 0–19 take the palette; each later round of 20 (up to the 64 AUVs a scenario allows) takes
+/// it again, darker (×0.7), then lighter (30 % of the way to white), then greyer (60 % of the
+/// way to mid grey), so that no two AUVs share a colour (before, AUV 20 repeated AUV 0's).
 pub fn vehicle_colour(vehicle: Option<usize>) -> RGBColor {
-    match vehicle {
-        None => BLACK,
-        Some(n) => PALETTE[n % PALETTE.len()],
-    }
+    let Some(n) = vehicle else { return BLACK };
+    let RGBColor(r, g, b) = PALETTE[n % PALETTE.len()];
+    let f = |c: u8| -> u8 {
+        let c = f64::from(c);
+        let v = match (n / PALETTE.len()) % 4 {
+            0 => c,
+            1 => 0.7 * c,
+            2 => 0.7 * c + 0.3 * 255.0,
+            _ => 0.4 * c + 0.6 * 128.0,
+        };
+        v.round() as u8
+    };
+    RGBColor(f(r), f(g), f(b))
 }
 
 /// The name of a vehicle in every figure: "USV", or "AUV n" (n from 0, as in `auvN.csv`).
@@ -257,5 +269,32 @@ mod tests {
         assert_eq!(vehicle_name(None), "USV");
         assert_eq!(vehicle_name(Some(3)), "AUV 3");
         assert_eq!(vehicle_colour(Some(21)), vehicle_colour(Some(1)));
+    }
+}
+
+#[cfg(test)]
+mod palette_tests {
+    use super::*;
+
+    /// Regression (issue 13): colours repeated beyond 20 AUVs. Every one of the 64 AUVs a
+    /// scenario allows has its own colour, none within 15 (RGB distance) of another or within
+    /// 60 of the USV's black.
+    #[test]
+    fn regression_colours_repeated_beyond_20_auvs() {
+        let dist = |a: RGBColor, b: RGBColor| {
+            let d = |x: u8, y: u8| (f64::from(x) - f64::from(y)).powi(2);
+            (d(a.0, b.0) + d(a.1, b.1) + d(a.2, b.2)).sqrt()
+        };
+        let colours: Vec<RGBColor> = (0..64).map(|n| vehicle_colour(Some(n))).collect();
+        for (i, &a) in colours.iter().enumerate() {
+            assert!(
+                dist(a, BLACK) >= 60.0,
+                "AUV {i} {a:?} is near the USV's black"
+            );
+            for (j, &b) in colours.iter().enumerate().skip(i + 1) {
+                assert!(dist(a, b) >= 15.0, "AUV {i} {a:?} and AUV {j} {b:?}");
+            }
+        }
+        assert_eq!(colours[..20], PALETTE[..], "the first 20 are the palette");
     }
 }
