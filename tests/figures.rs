@@ -213,3 +213,30 @@ fn a_plan_with_missing_vehicles_is_refused_not_a_panic() {
         "{err}"
     );
 }
+
+/// Regression (issue 13): with one AUV the link legends listed A2A links, and with K = 1 the
+/// heading-rate plot was empty without a word. The legends now leave A2A out for one AUV, and
+/// an empty heading-rate plot says why in its title.
+#[test]
+fn regression_one_auv_one_step_figures_say_what_they_show() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("figures_n1_k1");
+    let _ = std::fs::remove_dir_all(&dir);
+    let s = scenario::default_with(&["team.auvs=1".into(), "horizon.steps=1".into()]).unwrap();
+    let (floor, _) = scenario_floor(&s, Path::new("")).unwrap();
+    let p = shoal::Planner::new(&s, &floor).run().expect("plan");
+    shoal::figures::write_all(&p, &floor, &dir).expect("figures");
+    let svg = |stem: &str| std::fs::read_to_string(dir.join(format!("{stem}.svg"))).unwrap();
+    let note = "AUV heading rates: none (no two steps with a heading)";
+    assert!(
+        svg("heading-rate").contains(note),
+        "no note on the empty plot"
+    );
+    for stem in ["links-top", "links-3d", "link-lengths"] {
+        let text = svg(stem);
+        assert!(text.contains("A2U link"), "{stem}: no A2U entry");
+        assert!(
+            !text.contains("A2A link"),
+            "{stem} lists A2A links for one AUV"
+        );
+    }
+}

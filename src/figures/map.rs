@@ -112,7 +112,10 @@ fn paths_legend(scene: &Scene) -> Vec<Entry> {
 fn links_legend(scene: &Scene) -> Vec<Entry> {
     let mut e = style::vehicles(scene.n, true);
     e.push(Entry::new("A2U link (P3)", Swatch::Link(style::A2U)));
-    e.push(Entry::new("A2A link (P4)", Swatch::Link(style::A2A)));
+    if scene.n > 1 {
+        // one AUV has no A2A link to show
+        e.push(Entry::new("A2A link (P4)", Swatch::Link(style::A2A)));
+    }
     e
 }
 

@@ -36,7 +36,9 @@ impl<'a> Persp<'a> {
         let mut entries = style::vehicles(scene.n, true);
         let title = if links {
             entries.push(Entry::new("A2U link (P3)", Swatch::Link(style::A2U)));
-            entries.push(Entry::new("A2A link (P4)", Swatch::Link(style::A2A)));
+            if scene.n > 1 {
+                entries.push(Entry::new("A2A link (P4)", Swatch::Link(style::A2A)));
+            }
             "Step 2 links over Step 1 positions, 3D"
         } else {
             entries.push(Entry::new("start", Swatch::Dot(BLACK)));

@@ -106,14 +106,15 @@ pub(crate) fn links<'a>(scene: &'a Scene<'a>) -> Series<'a> {
         let oob = report.out_of_band.iter().filter(|o| o.k == k && k > 0);
         rings.extend(oob.map(|o| (t, o.length)));
     }
-    let mut entries = vec![
-        Entry::new("A2U link (AUV–USV)", Swatch::Link(style::A2U)),
-        Entry::new("A2A link (AUV–AUV)", Swatch::Dot(style::A2A)),
-        Entry::new(
-            format!("band d_s − d_t … d_s = {lo:.0} … {hi:.0} m"),
-            Swatch::Area(style::BAND),
-        ),
-    ];
+    let mut entries = vec![Entry::new("A2U link (AUV–USV)", Swatch::Link(style::A2U))];
+    if scene.n > 1 {
+        // one AUV has no A2A link to show
+        entries.push(Entry::new("A2A link (AUV–AUV)", Swatch::Dot(style::A2A)));
+    }
+    entries.push(Entry::new(
+        format!("band d_s − d_t … d_s = {lo:.0} … {hi:.0} m"),
+        Swatch::Area(style::BAND),
+    ));
     if !ticks.is_empty() {
         entries.push(Entry::new(
             "band top lowered (line of sight)",
@@ -190,15 +191,8 @@ pub(crate) fn heading_rate<'a>(scene: &'a Scene<'a>) -> Series<'a> {
         format!("limit ±ψ̇_max = ±{max} mrad/s"),
         Swatch::Dashed(style::LIMIT, 3),
     ));
-    let mut s = Series::new(
-        scene,
-        "heading-rate",
-        "AUV heading rates (final plan)",
-        entries,
-    );
-    s.y_desc = "heading rate ψ̇ (mrad/s)".into();
-    s.limits = vec![(max, style::LIMIT), (-max, style::LIMIT)];
     let dt = sc.horizon.dt;
+    let mut lines = Vec::new();
     for n in 0..scene.n {
         let heading =
             |&(w, k, _): &(usize, usize, f64)| scene.stage(w, Stage::Final).auvs[n].heading[k];
@@ -210,14 +204,22 @@ pub(crate) fn heading_rate<'a>(scene: &'a Scene<'a>) -> Series<'a> {
                         - std::f64::consts::PI;
                     run.push((pair[1].2, 1e3 * d / dt));
                 }
-                _ if !run.is_empty() => s
-                    .lines
-                    .push(vehicle_line(Some(n), std::mem::take(&mut run))),
+                _ if !run.is_empty() => lines.push(vehicle_line(Some(n), std::mem::take(&mut run))),
                 _ => {}
             }
         }
-        s.lines.push(vehicle_line(Some(n), run));
+        lines.push(vehicle_line(Some(n), run));
     }
+    // a rate needs two consecutive steps with a heading: say why the plot is empty
+    let title = if lines.iter().all(|l| l.points.is_empty()) {
+        "AUV heading rates: none (no two steps with a heading)"
+    } else {
+        "AUV heading rates (final plan)"
+    };
+    let mut s = Series::new(scene, "heading-rate", title, entries);
+    s.y_desc = "heading rate ψ̇ (mrad/s)".into();
+    s.limits = vec![(max, style::LIMIT), (-max, style::LIMIT)];
+    s.lines = lines;
     s.fit_y(false);
     let m = s.y_range.0.abs().max(s.y_range.1.abs());
     s.y_range = (-m, m);

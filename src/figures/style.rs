@@ -39,7 +39,8 @@ pub(crate) fn text(size: u32) -> TextStyle<'static> {
 }
 
 /// Colours of AUV 0, 1, …: dark and saturated enough to read over the muted floor, none of them
-/// black (the USV), light blue (A2U links) or yellow (A2A links). Beyond 20 AUVs they repeat.
+/// black (the USV), light blue (A2U links) or yellow (A2A links). Beyond 20 AUVs they come
+/// again in shades (`vehicle_colour`).
 const PALETTE: [RGBColor; 20] = [
     RGBColor(0x1f, 0x77, 0xb4),
     RGBColor(0xff, 0x7f, 0x0e),
