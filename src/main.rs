@@ -216,10 +216,20 @@ fn run(cli: Cli) -> Result<ExitCode> {
             quiet,
             json,
         } => {
-            if let Some(f) = seafloor {
-                set.push(format!("seafloor.file={}", toml_string(&f)));
-            }
-            let (s, source) = load_scenario(scenario.as_deref(), &set)?;
+            let flag = seafloor.map(|f| {
+                let text = format!("seafloor.file={}", toml_string(&f));
+                set.push(text.clone());
+                (text, format!("--seafloor {}", f.display()))
+            });
+            let (s, source) = match load_scenario(scenario.as_deref(), &set) {
+                Ok(loaded) => loaded,
+                Err(e) => match (e.downcast::<scenario::ScenarioError>(), &flag) {
+                    // an error in the override made of --seafloor names the flag given
+                    (Ok(e), Some((text, name))) => return Err(e.from_flag(text, name).into()),
+                    (Ok(e), None) => return Err(e.into()),
+                    (Err(e), _) => return Err(e),
+                },
+            };
             let how = How {
                 figures: !no_plot,
                 quiet,

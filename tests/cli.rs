@@ -362,3 +362,24 @@ fn regression_a_plan_of_another_format_says_to_plan_again() {
     );
     assert!(msg.contains("plan the scenario again"), "{msg}");
 }
+
+/// Regression (issue 13): an error in the `--seafloor X` given named `--set seafloor.file=X`,
+/// which the user never wrote.
+#[test]
+fn regression_a_seafloor_flag_error_names_the_flag() {
+    let dir = fresh_dir("seafloor_flag");
+    let (code, _, err) = common::run(shoal().args([
+        "plan",
+        "--no-plot",
+        "-o",
+        dir.to_str().unwrap(),
+        "--seafloor",
+        "floor.txt",
+    ]));
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("error: --seafloor floor.txt: seafloor.file"),
+        "{err}"
+    );
+    assert!(!err.contains("--set"), "{err}");
+}

@@ -176,6 +176,27 @@ impl ScenarioError {
             ScenarioError::BadOverride { text, .. } => format!("--set {text}"),
         }
     }
+
+    /// The same error, its source named `name` when it is `--set {text}`: a command-line tool
+    /// that turns its own flag into an override (`--seafloor X` into `--set seafloor.file=X`)
+    /// names the flag the user gave.
+    pub fn from_flag(mut self, text: &str, name: &str) -> ScenarioError {
+        let set = format!("--set {text}");
+        match &mut self {
+            ScenarioError::Syntax { source_name, .. }
+            | ScenarioError::UnknownKey { source_name, .. }
+            | ScenarioError::WrongType { source_name, .. }
+            | ScenarioError::MissingKey { source_name, .. }
+            | ScenarioError::OutOfRange { source_name, .. }
+            | ScenarioError::Invalid { source_name, .. }
+                if *source_name == set =>
+            {
+                *source_name = name.to_string();
+            }
+            _ => {}
+        }
+        self
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
