@@ -420,3 +420,74 @@ fn info_reports_size_extent_crs_range_nodata_land_and_origin() {
     assert_eq!(i.warnings.len(), 1);
     assert!(i.to_string().contains("EPSG:32631"));
 }
+
+/// The file with its PhotometricInterpretation (tag 262, a SHORT) set to `value`: its IFD
+/// entry, little-endian, is found by its bytes and patched in place.
+fn with_photometric(path: &std::path::Path, value: u16) {
+    let mut bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..2], b"II", "the writer's files are little-endian");
+    let entry = |v: u16| {
+        let mut e = vec![0x06, 0x01, 0x03, 0x00, 0x01, 0x00, 0x00, 0x00];
+        e.extend_from_slice(&v.to_le_bytes());
+        e
+    };
+    let (from, to) = (entry(1), entry(value));
+    let at = bytes
+        .windows(from.len())
+        .position(|w| w == from.as_slice())
+        .expect("a BlackIsZero PhotometricInterpretation entry");
+    bytes[at..at + to.len()].copy_from_slice(&to);
+    std::fs::write(path, bytes).unwrap();
+}
+
+/// Regression (issue 13): a GeoTIFF with PhotometricInterpretation WhiteIsZero was read as
+/// 1 − z (the TIFF decoder inverts brightness); elevations are data, and GDAL ignores the tag
+/// for data bands. It is now read as written, and signed integers, which the decoder refuses
+/// to invert, get a message that says how to rewrite the file.
+#[test]
+fn regression_white_is_zero_was_read_as_one_minus_z() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, z, nd) = survey();
+    for (k, sample) in [SampleType::Float32, SampleType::Float64, SampleType::UInt16]
+        .into_iter()
+        .enumerate()
+    {
+        let values: Vec<f64> = match sample {
+            // unsigned: elevations above the surface are its only valid values
+            SampleType::UInt16 => z.iter().map(|v| v.abs().round()).collect(),
+            _ => z.clone(),
+        };
+        let name = format!("w{k}.tif");
+        let layout = strips(TiffCompression::None);
+        let p = tif(dir.path(), &name, (&l, &values, &nd), &UTM, sample, layout);
+        let black = load(&p, &LoadOptions::default()).unwrap().floor;
+        with_photometric(&p, 0);
+        let white = load(&p, &LoadOptions::default()).unwrap().floor;
+        for (x, y) in [(500_123.4, 4_700_300.1), (500_700.0, 4_700_500.0)] {
+            let (b, w) = (
+                black.elevation(x, y).unwrap(),
+                white.elevation(x, y).unwrap(),
+            );
+            assert!((b - w).abs() < 1e-3, "{sample:?}: {b} read as {w}");
+        }
+        assert_eq!(
+            white.obstacle_counts(),
+            black.obstacle_counts(),
+            "{sample:?}"
+        );
+    }
+    let p = tif(
+        dir.path(),
+        "w_int.tif",
+        (&l, &z, &nd),
+        &UTM,
+        SampleType::Int16,
+        strips(TiffCompression::None),
+    );
+    with_photometric(&p, 0);
+    let e = load(&p, &LoadOptions::default()).unwrap_err().to_string();
+    assert!(
+        e.contains("WhiteIsZero") && e.contains("PHOTOMETRIC=MINISBLACK"),
+        "{e}"
+    );
+}

@@ -45,6 +45,10 @@ pub(crate) struct TiffGrid {
     /// Whether TIFF row 0 is the northernmost (pixel scale y > 0).
     north_up: bool,
     nodata: Option<f64>,
+    /// PhotometricInterpretation WhiteIsZero: the decoder inverts the samples (max − v for
+    /// integers, 1 − v for floats), which [`to_values`] undoes. Elevations are data, not
+    /// brightness: GDAL ignores the tag for data bands, and so do we.
+    white_is_zero: bool,
     chunks: Chunks,
     /// Things worth telling the user (e.g. a datum treated as WGS84).
     pub warnings: Vec<String>,
@@ -93,6 +97,18 @@ impl TiffGrid {
                 "SampleFormat {format} is not supported: expected unsigned or signed integers \
                  or IEEE floating point"
             )));
+        }
+        let white_is_zero = decoder
+            .find_tag_unsigned::<u16>(Tag::PhotometricInterpretation)
+            .map_err(tiff)?
+            == Some(0);
+        if white_is_zero && format == 2 {
+            return Err(fail(
+                "PhotometricInterpretation is WhiteIsZero with signed integers, which the TIFF \
+                 reader cannot decode; rewrite the file as BlackIsZero (gdal_translate -co \
+                 PHOTOMETRIC=MINISBLACK), the values are read as they are either way"
+                    .into(),
+            ));
         }
         let chunks = match decoder.get_chunk_type() {
             ChunkType::Strip => {
@@ -195,6 +211,7 @@ impl TiffGrid {
             crs,
             north_up,
             nodata,
+            white_is_zero,
             chunks,
             warnings,
         })
@@ -231,7 +248,7 @@ impl TiffGrid {
                     .read_chunk(i)
                     .map_err(|e| self.fail(format!("cannot decode chunk {index}: {e}")))
             })?;
-        let v = to_values(res, self.nodata);
+        let v = to_values(res, self.nodata, self.white_is_zero);
         if v.len() < data_width * data_height {
             return Err(self.fail(format!(
                 "chunk {index} holds {} samples, expected {data_width} × {data_height}",
@@ -346,8 +363,10 @@ fn find_f64s(
 }
 
 /// The samples of a chunk as f64, NaN at NODATA. A float32 sample is compared with the NODATA
-/// value rounded to float32, as GDAL does.
-fn to_values(res: DecodingResult, nodata: Option<f64>) -> Vec<f64> {
+/// value rounded to float32, as GDAL does. With `white_is_zero` the decoder's inversion is
+/// undone first, in the sample's own type (exact for integers; for floats 1 − (1 − v), within
+/// an ulp of v).
+fn to_values(res: DecodingResult, nodata: Option<f64>, white_is_zero: bool) -> Vec<f64> {
     fn conv<T: Copy>(v: Vec<T>, f: impl Fn(T) -> f64, nd: Option<f64>) -> Vec<f64> {
         v.into_iter()
             .map(|s| {
@@ -361,6 +380,11 @@ fn to_values(res: DecodingResult, nodata: Option<f64>) -> Vec<f64> {
             .collect()
     }
     let nd32 = nodata.map(|n| f64::from(n as f32));
+    let res = if white_is_zero {
+        undo_inversion(res)
+    } else {
+        res
+    };
     match res {
         DecodingResult::U8(v) => conv(v, f64::from, nodata),
         DecodingResult::I8(v) => conv(v, f64::from, nodata),
@@ -373,5 +397,25 @@ fn to_values(res: DecodingResult, nodata: Option<f64>) -> Vec<f64> {
         DecodingResult::F16(v) => conv(v, |s| s.to_f64(), nodata),
         DecodingResult::F32(v) => conv(v, f64::from, nd32),
         DecodingResult::F64(v) => conv(v, |s| s, nodata),
+    }
+}
+
+/// The decoder's WhiteIsZero inversion undone (it inverts unsigned integers as max − v and
+/// floats as 1 − v; signed integers it refuses, see `open`).
+fn undo_inversion(res: DecodingResult) -> DecodingResult {
+    match res {
+        DecodingResult::U8(v) => DecodingResult::U8(v.into_iter().map(|s| u8::MAX - s).collect()),
+        DecodingResult::U16(v) => {
+            DecodingResult::U16(v.into_iter().map(|s| u16::MAX - s).collect())
+        }
+        DecodingResult::U32(v) => {
+            DecodingResult::U32(v.into_iter().map(|s| u32::MAX - s).collect())
+        }
+        DecodingResult::U64(v) => {
+            DecodingResult::U64(v.into_iter().map(|s| u64::MAX - s).collect())
+        }
+        DecodingResult::F32(v) => DecodingResult::F32(v.into_iter().map(|s| 1.0 - s).collect()),
+        DecodingResult::F64(v) => DecodingResult::F64(v.into_iter().map(|s| 1.0 - s).collect()),
+        other => other,
     }
 }
