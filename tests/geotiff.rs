@@ -491,3 +491,34 @@ fn regression_white_is_zero_was_read_as_one_minus_z() {
         "{e}"
     );
 }
+
+/// Regression (issue 13): for a grid that is mostly land, the sign warning only said to set
+/// values = depth; it now says the positive nodes may simply be land.
+#[test]
+fn regression_a_mostly_land_grid_is_not_only_called_a_depth_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, z, nd) = survey();
+    // 60 % of the data nodes above sea level: a coastal grid
+    let coast: Vec<f64> = (0..z.len())
+        .map(|k| if k % 5 < 3 { 10.0 } else { -50.0 })
+        .collect();
+    let layout = strips(TiffCompression::None);
+    let p = tif(
+        dir.path(),
+        "coast.tif",
+        (&l, &coast, &nd),
+        &UTM,
+        SampleType::Float32,
+        layout,
+    );
+    let w = load(&p, &LoadOptions::default())
+        .unwrap()
+        .warnings
+        .join("\n");
+    assert!(w.contains("% of the data values are positive"), "{w}");
+    assert!(w.contains("seafloor.values = \"depth\""), "{w}");
+    assert!(
+        w.contains("mostly land, the positive nodes are land"),
+        "{w}"
+    );
+}

@@ -428,7 +428,8 @@ pub(crate) fn sign_warning(
         Values::Elevation if pos * 2 > total => Some(format!(
             "{name}: {:.0} % of the data values are positive (above sea level) while \
              seafloor.values = \"elevation\"; if the grid holds depths (positive down), set \
-             seafloor.values = \"depth\"",
+             seafloor.values = \"depth\"; if it is a coastal grid that is mostly land, the \
+             positive nodes are land, which the planner keeps every vehicle out of",
             pct(pos)
         )),
         Values::Depth if neg * 2 > total => Some(format!(
