@@ -17,15 +17,7 @@ fn small_plan(dir: &Path) -> (shoal::plan::Plan, PathBuf) {
         "windows=2".into(),
     ])
     .unwrap();
-    let (floor, source) = scenario_floor(&s, Path::new("")).unwrap();
-    let p = shoal::Planner::new(&s, &floor)
-        .provenance(shoal::Provenance {
-            scenario_source: "test".into(),
-            overrides: vec![],
-            seafloor: source,
-        })
-        .run()
-        .expect("plan");
+    let (p, _) = common::plan_scenario(&s).expect("plan");
     let path = dir.join("plan.json");
     shoal::output::write_plan(&p, &path).unwrap();
     (p, path)

@@ -6,7 +6,8 @@
 //! --no-install-recommends chromium`); `.ci/run` installs them. Without them the browser test
 //! fails, saying so, unless SHOAL_SKIP_BROWSER=1.
 
-use shoal::mission::scenario_floor;
+mod common;
+
 use shoal::scenario;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -19,16 +20,7 @@ fn small_plan() -> (shoal::plan::Plan, shoal::seafloor::Seafloor) {
         "windows=2".into(),
     ])
     .expect("valid overrides");
-    let (floor, source) = scenario_floor(&s, Path::new("")).expect("floor");
-    let p = shoal::Planner::new(&s, &floor)
-        .provenance(shoal::Provenance {
-            scenario_source: "test".into(),
-            overrides: vec![],
-            seafloor: source,
-        })
-        .run()
-        .expect("plan");
-    (p, floor)
+    common::plan_scenario(&s).expect("plan")
 }
 
 fn out_dir(name: &str) -> PathBuf {

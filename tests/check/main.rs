@@ -433,6 +433,15 @@ fn auv_near_the_surface_fails_c1_4_only() {
     assert!((f.worst_margin + 0.5).abs() < 1e-12, "{f:?}");
 }
 
+/// A flat floor at −100 m, 5 m cells, with one node at `peak` raised to −10 m: a 5 m pyramid.
+fn pyramid(peak: [f64; 2]) -> Seafloor {
+    let d = 5.0;
+    grid(peak[0] - 60.0 * d, peak[1] - 60.0 * d, d, 121, |x, y| {
+        let at_peak = (x - peak[0]).abs() < 1e-6 && (y - peak[1]).abs() < 1e-6;
+        Some(if at_peak { -10.0 } else { -100.0 })
+    })
+}
+
 #[test]
 fn a_seamount_between_two_good_waypoints_fails_the_segment_check_only() {
     let sp = {
@@ -449,12 +458,7 @@ fn a_seamount_between_two_good_waypoints_fails_the_segment_check_only() {
     let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
     let half = ((b[0] - a[0]).hypot(b[1] - a[1])) / 2.0;
     assert!(half > 3.0, "segment too short for the test: {half}");
-    // a grid with a node exactly at the midpoint, raised to −10 m: a 5 m pyramid
-    let d = 5.0;
-    let floor = grid(mid[0] - 60.0 * d, mid[1] - 60.0 * d, d, 121, |x, y| {
-        let at_peak = (x - mid[0]).abs() < 1e-6 && (y - mid[1]).abs() < 1e-6;
-        Some(if at_peak { -10.0 } else { -100.0 })
-    });
+    let floor = pyramid(mid);
     let plan = build(&sp, &floor);
     let r = check_plan(&plan, &floor);
     // the peak also stands in the way of the A2A link leaving AUV 0 at k = 1
@@ -897,11 +901,7 @@ fn regression_a_coarse_resolution_does_not_hide_the_floor() {
     );
     // a 5 m pyramid at 1/3 of the segment, away from both ends and from its midpoint
     let peak = [a[0] + (b[0] - a[0]) / 3.0, a[1] + (b[1] - a[1]) / 3.0];
-    let d = 5.0;
-    let floor = grid(peak[0] - 60.0 * d, peak[1] - 60.0 * d, d, 121, |x, y| {
-        let at_peak = (x - peak[0]).abs() < 1e-6 && (y - peak[1]).abs() < 1e-6;
-        Some(if at_peak { -10.0 } else { -100.0 })
-    });
+    let floor = pyramid(peak);
     let mut plan = build(&sp, &floor);
     plan.scenario.acoustic.resolution = 1e308;
     let r = check_plan(&plan, &floor);
