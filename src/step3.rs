@@ -11,7 +11,9 @@
 //!   the plan (`links.out_of_band`). The hard requirement, that every AUV reaches the USV through
 //!   links in range and in line of sight at every step, is verified after the loop (`planner`,
 //!   with `metrics::first_cut_off`) and by `shoal check`.
-//! - Line of sight (C1_13): after each P5 solve every planned link is tested with the seafloor's
+//! - Line of sight (C1_13) is first a constraint of P5 itself, linearised rows over the
+//!   keep-out field with a penalised slack (`team::keep_out`): lowering a band cannot clear a
+//!   ridge between two AUVs. Then, as in the paper, after each P5 solve every planned link is tested with the seafloor's
 //!   𝓛_r query over the keep-out field (`Seafloor::keep_out`), so a link over an obstacle cell
 //!   (NODATA or land) is blocked as one under the floor is; a blocked link has its band's upper end lowered by `acoustic.los_shrink` (and
 //!   the lower end with it when the band would close) and P5 is solved again from the last
@@ -251,6 +253,60 @@ mod tests {
         );
         // over the floor alone the same edge would have been clear
         assert!(blocked_links(&floor, &floor, &set, &t, 5.0).is_empty());
+    }
+
+    /// Regression (issue 13, sweep draws 18 and 27: "no line of sight … after 5 rounds of
+    /// lowering its range"): over a grid without obstacles P5 had no line-of-sight rows, and
+    /// lowering a band cannot clear a ridge between two AUVs. With the rows of
+    /// `team::keep_out` on every grid, one round is enough: P5 moves the AUVs into sight.
+    #[test]
+    fn links_regain_sight_over_a_ridge_in_one_round() {
+        let mut s = crate::scenario::Scenario::default();
+        s.team.auvs = 2;
+        s.horizon.steps = 4;
+        s.horizon.dt = 60.0;
+        s.acoustic.los_rounds = 1;
+        let floor = ridge();
+        let field = floor.keep_out();
+        let auv = crate::vehicle::AuvModel::new(&s.auv, s.horizon.dt).unwrap();
+        let usv = crate::vehicle::UsvModel {
+            dt: s.horizon.dt,
+            max_speed: s.usv.max_speed,
+        };
+        let (one, _) = team();
+        let kk = s.horizon.steps;
+        let still = Trajectory {
+            usv_p: vec![one.usv_p[0]; kk + 1],
+            usv_u: vec![[0.0; 2]; kk],
+            auv_p: one.auv_p.iter().map(|p| vec![p[0]; kk + 1]).collect(),
+            auv_v: vec![vec![[0.0; 3]; kk + 1]; 2],
+            auv_u: vec![vec![[0.0; 3]; kk]; 2],
+        };
+        let start = crate::trajectory::Start {
+            usv: still.usv_p[0],
+            auvs: still
+                .auv_p
+                .iter()
+                .map(|p| crate::plan::AuvState {
+                    position: p[0],
+                    velocity: [0.0; 3],
+                })
+                .collect(),
+        };
+        let graph = Graph {
+            a2u: vec![0; kk + 1],
+            a2a: vec![vec![[0, 1]]; kk + 1],
+            exact: true,
+            solve_time_s: 0.0,
+        };
+        // the reference's A2A edge is blocked at every step
+        let set = LinkSet::from_graph(&graph, 150.0, 30.0);
+        assert_eq!(blocked_links(&floor, &field, &set, &still, 5.0).len(), kk);
+        let mut problem = TeamProblem::new(&s, &floor, &field, auv, usv, start).with_links(set);
+        let out = solve(&mut problem, &still, &mut |_| {}).expect("P5 keeps the edge in sight");
+        assert_eq!(out.los_rounds, 1);
+        let clear = blocked_links(&floor, &field, &out.links, &out.outcome.iterate, 5.0);
+        assert!(clear.is_empty(), "{clear:?}");
     }
 
     #[test]

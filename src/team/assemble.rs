@@ -65,7 +65,7 @@ pub(super) fn assemble(
     }
     floor::rows(p, r, &mut m)?;
     keep_out::usv_rows(p, r, &mut m)?; // over a grid with obstacles
-    keep_out::los_rows(p, r, &mut m)?; // Step 3 over a grid with obstacles
+    keep_out::los_rows(p, r, &mut m)?; // Step 3, over every grid
     let pieces = heading::pieces(p, r);
     heading::rows(p, r, &pieces, &mut m);
     links::lower_rows(p, r, &mut m); // Step 3 only
@@ -75,12 +75,12 @@ pub(super) fn assemble(
             m.nonnegative(l.heading_slack(n, k));
         }
     }
-    if l.obstacles {
-        for k in 1..=kk {
+    for k in 1..=kk {
+        if l.obstacles {
             m.nonnegative(l.usv_slack(k));
-            for li in 0..l.links {
-                m.nonnegative(l.los_slack(li, k));
-            }
+        }
+        for li in 0..l.links {
+            m.nonnegative(l.los_slack(li, k));
         }
     }
     m.cones.push(NonnegativeConeT(m.b.len() - first));

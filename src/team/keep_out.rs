@@ -1,18 +1,22 @@
-//! Obstacles in the team problem, over a grid that has any (NODATA or land cells; see
-//! `Seafloor::keep_out` for the keep-out field, in which every obstacle cell lies at least
-//! `KEEP_OUT_LIFT` above the surface):
+//! Keep-out rows of the team problem: the USV's over a grid with obstacles (NODATA or land
+//! cells; see `Seafloor::keep_out` for the keep-out field, in which every obstacle cell lies
+//! at least `KEEP_OUT_LIFT` above the surface, and which is the floor itself over a grid
+//! without them), and P5's line of sight over every grid:
 //!
-//! - the USV keeps the field `KEEP_OUT_MARGIN` below the surface along its segments (`usv_rows`);
+//! - the USV keeps the field `KEEP_OUT_MARGIN` below the surface along its segments
+//!   (`usv_rows`, over a grid with obstacles);
 //! - in P5 (Step 3), every planned link keeps line of sight over the field, C1_13 as
-//!   linearised rows (`los_rows`). A link with an obstacle between its ends cannot regain its
-//!   line of sight by being shortened, which is all the loop of Algorithm 1 (lines 17–22) does:
-//!   the two AUVs must move round the obstacle, and only a constraint in P5 makes them.
+//!   linearised rows (`los_rows`), `KEEP_OUT_MARGIN` above it at its interior samples. A link
+//!   with a ridge or an obstacle between its ends cannot regain its line of sight by being
+//!   shortened, which is all the loop of Algorithm 1 (lines 17–22) does: the two AUVs must
+//!   rise over it or move round it, and only a constraint in P5 makes them. (Over a grid
+//!   without obstacles these rows were once left out, and the sweep of issue 13 found
+//!   feasible missions refused after five rounds of lowering bands.)
 //!
 //! Both are linearised about the reference at the samples of 𝓛_r, the `FLOOR_ROWS` (USV) or
 //! `LOS_ROWS` (link) samples with the largest g getting a row sharing one slack per segment,
 //! like the AUVs' floor rows; the SCP measures the true violation at every sample
-//! (`violations`). Over a grid without obstacles none of this exists, and the problem
-//! is exactly the one without obstacle handling.
+//! (`violations`). Step 1 (P2, no links) over a grid without obstacles has none of this.
 
 use super::floor::{apart, pick_samples, FLOOR_ROWS};
 use super::links::{describe, end_columns, ends};
@@ -46,12 +50,12 @@ pub(super) enum KeepOut {
 /// The keep-out slacks' price (over a grid with obstacles): the SCP's penalty λ per metre.
 pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
     let l = p.layout;
-    if l.obstacles {
-        for k in 1..=l.k {
+    for k in 1..=l.k {
+        if l.obstacles {
             m.q[l.usv_slack(k)] = penalty;
-            for li in 0..l.links {
-                m.q[l.los_slack(li, k)] = penalty;
-            }
+        }
+        for li in 0..l.links {
+            m.q[l.los_slack(li, k)] = penalty;
         }
     }
 }
@@ -87,7 +91,7 @@ pub(super) fn usv_rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Res
 /// rows and the USV's rows). Rows touch the link's two ends.
 pub(super) fn los_rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
     let l = p.layout;
-    let Some(set) = p.links.as_ref().filter(|_| l.obstacles) else {
+    let Some(set) = p.links.as_ref() else {
         return Ok(());
     };
     for k in 1..=l.k {
@@ -164,26 +168,42 @@ fn sample_rows(
 pub(super) fn violations(p: &TeamProblem, t: &Trajectory) -> Vec<(f64, KeepOut)> {
     let l = p.layout;
     let mut out = Vec::new();
-    if !l.obstacles {
-        return out;
-    }
     let worst = |a: [f64; 3], b: [f64; 3]| {
         let (clearance, at) = p.keep_out_clearance(a, b);
         (KEEP_OUT_MARGIN - clearance, at)
     };
     for k in 1..=l.k {
-        let [a, b] = [k - 1, k].map(|i| [t.usv_p[i][0], t.usv_p[i][1], 0.0]);
-        let (v, at) = worst(a, b);
-        out.push((v, KeepOut::Usv { k, at }));
+        if l.obstacles {
+            let [a, b] = [k - 1, k].map(|i| [t.usv_p[i][0], t.usv_p[i][1], 0.0]);
+            let (v, at) = worst(a, b);
+            out.push((v, KeepOut::Usv { k, at }));
+        }
         if let Some(set) = &p.links {
             for (li, &link) in set.links[k].iter().enumerate() {
                 let (a, b) = ends(t, k, link);
-                let (v, at) = worst(a, b);
+                let (v, at) = link_worst(p, a, b).unwrap_or_else(|| worst(a, b));
                 out.push((v, KeepOut::Link { k, li, at }));
             }
         }
     }
     out
+}
+
+/// A link's line-of-sight violation, `KEEP_OUT_MARGIN` less its least clearance over the
+/// keep-out field at the interior samples of 𝓛_r, where its rows are (its ends are the
+/// vehicles, held by their own constraints: an AUV may fly ε = 0 above the floor); none when
+/// a sample is off the grid (the whole segment's measure then applies).
+fn link_worst(p: &TeamProblem, a: [f64; 3], b: [f64; 3]) -> Option<(f64, [f64; 3])> {
+    let n = segment_intervals(a, b, p.scenario.acoustic.resolution);
+    let mut worst = (f64::NEG_INFINITY, a);
+    for j in 1..n {
+        let (g, _) = floor_sample(p.keep_out, KEEP_OUT_MARGIN, a, b, j as f64 / n as f64).ok()?;
+        if g > worst.0 {
+            worst = (g, lerp(a, b, j as f64 / n as f64));
+        }
+    }
+    // a link too short to have interior samples keeps its sight
+    Some(if n < 2 { (0.0, a) } else { worst })
 }
 
 /// The error text of a keep-out violation: the constraint, the vehicle or link, the step,

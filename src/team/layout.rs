@@ -5,9 +5,9 @@
 //! P_n[1..=K], V_n[1..=K], U_n[0..K), the floor slacks ν_f[1..=K] and heading slacks ν_h[1..=K].
 //! Step k = 0 is the window's fixed start and is not a variable. P5 (Step 3) appends, per step
 //! k = 1..=K and planned link l, the slacks of its band: σ (above the upper end, C5_2/C5_3's
-//! "< d_s") and ν (below the lower end, "> d_s − d_t"). Over a grid with obstacles come last
-//! the slacks ν_u[1..=K] of the USV's keep-out rows, then per planned link l and step k the
-//! slack ν_los[l][k] of its line-of-sight rows (P5 only).
+//! "< d_s") and ν (below the lower end, "> d_s − d_t"). Over a grid with obstacles come next
+//! the slacks ν_u[1..=K] of the USV's keep-out rows; last, per planned link l and step k, the
+//! slack ν_los[l][k] of its line-of-sight rows (P5 only, over every grid).
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -25,12 +25,10 @@ impl Layout {
     const AUV_BLOCK: usize = 11;
 
     pub fn variables(&self) -> usize {
-        self.keep_out_base()
-            + if self.obstacles {
-                self.k * (1 + self.links)
-            } else {
-                0
-            }
+        self.los_base() + self.k * self.links
+    }
+    fn los_base(&self) -> usize {
+        self.keep_out_base() + if self.obstacles { self.k } else { 0 }
     }
     fn keep_out_base(&self) -> usize {
         self.link_base() + 2 * self.links * self.k
@@ -71,11 +69,11 @@ impl Layout {
         debug_assert!(self.obstacles && k >= 1 && k <= self.k);
         self.keep_out_base() + (k - 1)
     }
-    /// ν_los\[l\]\[k\]: slack of the line-of-sight rows of link l at step k, k = 1..=K (only with
-    /// obstacles and links).
+    /// ν_los\[l\]\[k\]: slack of the line-of-sight rows of link l at step k, k = 1..=K (P5,
+    /// over every grid).
     pub fn los_slack(&self, l: usize, k: usize) -> usize {
-        debug_assert!(self.obstacles && l < self.links && k >= 1 && k <= self.k);
-        self.keep_out_base() + self.k + l * self.k + (k - 1)
+        debug_assert!(l < self.links && k >= 1 && k <= self.k);
+        self.los_base() + l * self.k + (k - 1)
     }
     /// P_USV\[k\], k = 1..=K (2 entries).
     pub fn usv_p(&self, k: usize) -> usize {
@@ -188,12 +186,12 @@ mod tests {
                     mark(l.band_lower_slack(li, s), 1);
                 }
             }
-            if obstacles {
-                for s in 1..=k {
+            for s in 1..=k {
+                if obstacles {
                     mark(l.usv_slack(s), 1);
-                    for li in 0..links {
-                        mark(l.los_slack(li, s), 1);
-                    }
+                }
+                for li in 0..links {
+                    mark(l.los_slack(li, s), 1);
                 }
             }
             assert!(

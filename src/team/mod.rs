@@ -11,7 +11,7 @@
 //! | `bounds` | C1_4 (underwater), the grid bounds |
 //! | `floor` | C2_2, floor clearance along every segment (C1_12) |
 //! | `heading` | C1_14, heading rate, as a disjunction |
-//! | `keep_out` | obstacle cells: the USV's keep-out rows, P5's line of sight (C1_13) |
+//! | `keep_out` | the USV's keep-out rows (obstacle cells), P5's line of sight (C1_13) |
 //! | `links` | P5's link bands C5_2/C5_3, priced by OF1_3/OF1_4 |
 //! | `spread` | OF1_5 |
 //! | `objective` | OF2 (OF1_1, OF1_2, OF1_8 or OF1_8_2) and the objective's terms |
@@ -23,9 +23,9 @@
 //! Departure from the paper over grids with obstacles (NODATA and land cells): every floor
 //! constraint (C2_2 rows, the true violation, the first guess) uses the keep-out field of
 //! `Seafloor::keep_out`, in which every obstacle cell lies above the surface, instead of the
-//! floor; the USV too keeps the field below the surface along its segments, P5 keeps every
-//! planned link's line of sight over it (`keep_out`), and the first guess goes round obstacles
-//! (`detour`). The objective's height term and the plan's records use the floor itself.
+//! floor; the USV too keeps the field below the surface along its segments, and the first
+//! guess goes round obstacles (`detour`). Over every grid P5 keeps each planned link's line of
+//! sight as linearised rows (`keep_out`), where the paper only lowers a blocked link's band. The objective's height term and the plan's records use the floor itself.
 
 mod assemble;
 mod bounds;
