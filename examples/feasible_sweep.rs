@@ -6,6 +6,7 @@
 //!
 //! Run: cargo run --release --example feasible_sweep -- DRAWS [FIRST_DRAW]
 //! (draw i uses seed i of the generator, so two processes can split a sweep by FIRST_DRAW).
+//! `-- show I` prints draw I's scenario as TOML instead, for `shoal plan I.toml`.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -35,6 +36,18 @@ fn draw(i: u64) -> Scenario {
 }
 
 fn main() {
+    let raw: Vec<String> = std::env::args().skip(1).collect();
+    if raw.first().map(String::as_str) == Some("show") {
+        let i = raw
+            .get(1)
+            .and_then(|a| a.parse().ok())
+            .expect("show I: I is an integer");
+        print!(
+            "{}",
+            toml::to_string(&draw(i)).expect("a scenario serialises")
+        );
+        return;
+    }
     let args: Vec<u64> = std::env::args()
         .skip(1)
         .map(|a| a.parse().expect("DRAWS [FIRST_DRAW] are integers"))

@@ -290,6 +290,37 @@ fn regression_slow_auvs_behind_a_fast_usv_plan() {
     }
 }
 
+/// Regression (issue 13's sweep, draw 2: N = 6, K = 28, δ = 187 s, d_s = 66 m): window 0 ran
+/// the team into the grid's east edge, and window 1 was refused with "the acoustic chain breaks
+/// at window 1, step 1" (or, once its guess turned back, "a constraint cannot hold: C2_2").
+/// Three defects of the SCP: the first guess stopped at the edge; a floor row only at the 12
+/// worst samples of a 450 m segment let the model dive at its waypoint whatever the
+/// (horizontal) trust region, so the predicted decrease never shrank; and the model's floor
+/// margin made a violated reference look worse to the model than to the SCP's measure, so
+/// that with a grown penalty it predicted no decrease at all. The mission now plans.
+#[test]
+fn regression_a_window_that_starts_at_the_grid_edge_plans() {
+    let mut s = Scenario {
+        seed: 881340,
+        windows: 2,
+        ..Scenario::default()
+    };
+    s.team.auvs = 6;
+    s.horizon.steps = 28;
+    s.horizon.dt = 187.0158336695849;
+    s.auv.max_speed = 2.4099022587040375;
+    s.usv.max_speed = 2.600554974527508;
+    s.acoustic.sonar_range = 65.6259253368803;
+    s.acoustic.band_tolerance = 0.2 * s.acoustic.sonar_range;
+    s.seafloor.synthetic.seamounts = 10;
+    s.seafloor.synthetic.valleys = 7;
+    let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
+    let p = plan_on(&s, &f, source);
+    let r = check_plan(&p, &f);
+    assert!(r.passed(), "\n{}", r.table());
+    assert_eq!(p.metrics.connected_fraction, 1.0);
+}
+
 /// Regression (issue 13): at `acoustic.resolution` = 1–2 m (default 5 m) the planner wrote
 /// plans that failed its own check (C1_6 by 6.8 m; by 36.8 m with seed 7 and 4 AUVs) after its
 /// SCP stalled: the 12 floor rows of a segment bunched within 12 m of its worst sample, and when

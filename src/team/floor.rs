@@ -77,12 +77,18 @@ pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<
                 let sj = j as f64 / used as f64;
                 g.push((floor_sample(p.keep_out, eps, pa, pb, sj)?.0, j));
             }
-            let picks = pick_samples(&mut g, FLOOR_ROWS, apart(pa, pb, used));
-            for slot in 0..FLOOR_ROWS {
+            let mut picks = pick_samples(&mut g, FLOOR_ROWS, apart(pa, pb, used));
+            // the waypoint P[k] always has a row: the trust region is horizontal, so in the
+            // model a waypoint without one could dive below the floor at any radius
+            if !picks.contains(&used) {
+                picks.push(used);
+            }
+            for slot in 0..FLOOR_ROWS + 1 {
                 let row_data = match picks.get(slot) {
                     Some(&j) => {
                         let sj = j as f64 / used as f64;
                         let (gv, grad) = floor_sample(p.keep_out, eps, pa, pb, sj)?;
+                        let gv = reference_margin(gv);
                         let c = [grad[0], grad[1], -1.0];
                         // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
                         let ps = crate::linearise::lerp(pa, pb, sj);
@@ -110,6 +116,18 @@ pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<
         }
     }
     Ok(())
+}
+
+/// A row's g with the margin the reference has of it: g is taken with the full
+/// `FLOOR_MARGIN`; a sample the reference holds with less than that to spare, or violates,
+/// gets a row that the reference meets exactly or violates by the true amount. The model and
+/// the SCP's measure (C2_2 with ε) then agree at the reference, as SCvx needs: with the full
+/// margin a violated reference looked `FLOOR_MARGIN` × λ worse to the model than to the
+/// measure, and once λ had grown the model predicted no decrease at all (issue 13's sweep,
+/// draw 2: "a constraint cannot hold" on a feasible mission).
+fn reference_margin(g: f64) -> f64 {
+    let room = (FLOOR_MARGIN - g).max(0.0); // how far the reference is above ε
+    g - FLOOR_MARGIN + FLOOR_MARGIN.min(room)
 }
 
 /// Up to `count` sample indices from (g, j) pairs: largest g first, skipping a neighbour
@@ -164,5 +182,23 @@ pub(super) fn detail(p: &TeamProblem, n: usize, k: usize, at: [f64; 3]) -> Strin
                 at[2] - floor
             )
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A row's g at the reference is the true shortfall when the reference violates C2_2 or
+    /// holds it with less than `FLOOR_MARGIN` to spare (so the model and the SCP's measure
+    /// agree there), and carries the whole margin otherwise.
+    #[test]
+    fn a_row_meets_the_reference_as_the_measure_does() {
+        // g is taken with the full margin: g = Z + ε + FLOOR_MARGIN − z
+        let violated_by = |d: f64| reference_margin(d + FLOOR_MARGIN);
+        assert!((violated_by(1.0) - 1.0).abs() < 1e-12); // 1 m below ε: 1 m, not 1.5
+        assert!(violated_by(0.0).abs() < 1e-12); // exactly at ε: met exactly
+        assert!(violated_by(-0.2).abs() < 1e-12); // 0.2 m to spare: met exactly
+        assert!((violated_by(-3.0) + 2.5).abs() < 1e-12); // 3 m to spare: 0.5 m kept
     }
 }

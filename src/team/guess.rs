@@ -59,19 +59,36 @@ pub(super) fn initial_guess(problem: &TeamProblem, previous_heading: Option<f64>
         UsvObjective::Away => (previous_heading.unwrap_or(s.usv.initial_heading), top),
     };
     // the USV's speed: the fraction of `speed` whose formation has the least objective
-    SPEED_FRACTIONS
-        .iter()
-        .map(|f| {
-            let t = formation(problem, dir, f * speed);
-            (problem.evaluate(&t).objective, t)
-        })
+    let best = |dir: f64| {
+        SPEED_FRACTIONS
+            .iter()
+            .map(|f| {
+                let (t, clipped) = formation(problem, dir, f * speed);
+                (problem.evaluate(&t).objective, t, clipped)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .expect("SPEED_FRACTIONS is not empty")
+    };
+    let ahead = best(dir);
+    if !(s.usv.objective == UsvObjective::Away && ahead.2) {
+        return ahead.1;
+    }
+    // a window that starts at the grid's edge heading out: the course of least objective
+    // among eight, so that the team turns back into the map rather than stopping at its edge
+    (1..TURNS)
+        .map(|j| best(dir + j as f64 * std::f64::consts::TAU / TURNS as f64))
+        .chain(std::iter::once(ahead))
         .min_by(|a, b| a.0.total_cmp(&b.0))
-        .expect("SPEED_FRACTIONS is not empty")
+        .expect("at least one course")
         .1
 }
 
-/// The formation guess with the USV at `speed` along `dir` (see `initial_guess`).
-fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> Trajectory {
+/// Courses tried by `initial_guess` when the grid's edge stops the first one.
+const TURNS: usize = 8;
+
+/// The formation guess with the USV at `speed` along `dir` (see `initial_guess`), and whether
+/// the grid's edge stopped its USV short of that course.
+fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) {
     let s = problem.scenario;
     let (kk, nn) = (problem.layout.k, problem.layout.n);
     let dt = s.horizon.dt;
@@ -83,8 +100,10 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> Trajectory {
     };
     let mut usv_u = Vec::with_capacity(kk);
     let mut q = [problem.start.usv[0], problem.start.usv[1], 0.0];
+    let mut clipped = false;
     for _ in 0..kk {
         let v = toward(q, u);
+        clipped |= (v[0] - u[0]).hypot(v[1] - u[1]) > 1e-6 * speed.max(1e-9);
         q = [q[0] + v[0] * dt, q[1] + v[1] * dt, 0.0];
         usv_u.push(v);
     }
@@ -122,7 +141,8 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> Trajectory {
         })
         .collect::<Vec<_>>();
     debug_assert_eq!(auv_u.len(), nn);
-    Trajectory::simulate(&problem.start, usv_u, auv_u, &problem.auv, &problem.usv)
+    let t = Trajectory::simulate(&problem.start, usv_u, auv_u, &problem.auv, &problem.usv);
+    (t, clipped)
 }
 
 #[cfg(test)]
@@ -137,6 +157,13 @@ mod tests {
     fn guessed_distance(n: usize) -> f64 {
         let mut s = Scenario::default();
         s.team.auvs = n;
+        guessed_run(&s).0
+    }
+
+    /// How far the USV goes in the first reference of `s`, and how far it would along
+    /// `usv.initial_heading` at full formation speed.
+    fn guessed_run(s: &Scenario) -> (f64, f64) {
+        let s = s.clone();
         let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
         let keep_out = floor.keep_out();
         let init = initial_state(&s, &floor, &keep_out).unwrap();
@@ -150,9 +177,35 @@ mod tests {
             max_speed: s.usv.max_speed,
         };
         let p = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start);
-        let t = p.initial_guess(None);
-        let (a, b) = (t.usv_p[0], t.usv_p[s.horizon.steps]);
-        (b[0] - a[0]).hypot(b[1] - a[1])
+        let run = |t: &crate::trajectory::Trajectory| {
+            let (a, b) = (t.usv_p[0], t.usv_p[s.horizon.steps]);
+            (b[0] - a[0]).hypot(b[1] - a[1])
+        };
+        let top = s
+            .usv
+            .max_speed
+            .min(super::FORMATION_SHARE * s.auv.max_speed);
+        let straight = super::formation(&p, s.usv.initial_heading, top).0;
+        (run(&p.initial_guess(None)), run(&straight))
+    }
+
+    /// Regression (issue 13's sweep, draw 2): a window that starts heading out towards the
+    /// grid's edge had a first guess stopped at the edge, from which the SCP did not recover.
+    /// The guess now takes the course of least objective among eight: on a 2 km grid, from
+    /// 10 m short of its east edge heading east, the straight course goes nowhere and the
+    /// guess runs back into the map.
+    #[test]
+    fn regression_the_guess_turns_back_at_the_grid_edge() {
+        let mut s = Scenario::default();
+        s.seafloor.synthetic.size = [2000.0, 2000.0];
+        s.team.auvs = 2;
+        s.initial = Some(crate::scenario::Initial {
+            usv: [990.0, 0.0],
+            auvs: vec![[960.0, 40.0, -40.0], [960.0, -40.0, -40.0]],
+        });
+        let (guess, straight) = guessed_run(&s);
+        assert!(straight < 10.0 + 1e-6, "{straight}");
+        assert!(guess > 500.0, "{guess} {straight}");
     }
 
     /// The paper's 5 AUVs go at full speed (1.5 m/s for 2000 s: 3000 m, as Step 1 then plans);
