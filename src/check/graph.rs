@@ -145,7 +145,7 @@ fn links_problems(links: &[Link], a2u: Option<usize>, edges: &[[usize; 2]]) -> V
 
 impl Checker<'_> {
     /// Line of sight of the segment p → q (see the module docs).
-    fn los(&self, p: [f64; 3], q: [f64; 3]) -> Result<SegmentClearance, String> {
+    pub(super) fn los(&self, p: [f64; 3], q: [f64; 3]) -> Result<SegmentClearance, String> {
         self.floor
             .segment_clearance(p, q, self.resolution())
             .map_err(|e| e.to_string())

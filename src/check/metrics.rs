@@ -2,16 +2,111 @@
 //! checker verifies what a plan claims, not only its positions): per window and over the
 //! mission, the input energy Σ‖U‖², the mean and least height above the floor over the AUV
 //! waypoints k = 1..=K (off-grid waypoints skipped), and the largest heading rate |Δψ|/δ between
-//! recorded headings. Each is compared relative to its magnitude (at least 1). The connected
-//! and chain fractions and the explored area are not recomputed here (the connectivity family
-//! requires 100 % of steps connected whatever the plan records).
+//! recorded headings. Each is compared relative to its magnitude (at least 1).
+//!
+//! The connected and chain fractions (steps k = 0..=K of a window; over the mission, k = 0..=K
+//! of the first window and k = 1..=K of the later ones) are recounted with the checker's own
+//! links (in range within `LENGTH_TOL`, in sight within `LOS_TOL`, over no obstacle cell) and
+//! must match exactly. The explored area, the union of every AUV segment's swath (the points
+//! within w/2 of it, w = `auv.swath_width`), is measured on columns of width w/16 along x,
+//! exactly along each column's centre line; the planner measures it on strips along y, so the
+//! two are independent estimates of one area and must agree within [`AREA_TOL`].
 
-use super::run::{Checker, Family};
-use super::FamilyResult;
-use crate::plan::{Metrics, Stage};
+use super::graph::node;
+use super::run::{diff, Checker, Family};
+use super::{FamilyResult, LENGTH_TOL, LOS_TOL};
+use crate::plan::{Link, Metrics, Stage};
 
 /// Relative tolerance of a recomputed metric.
 const METRIC_TOL: f64 = 1e-6;
+
+/// Relative tolerance of the recomputed explored area (at least 10⁻⁴ km² absolute): two
+/// midpoint rules of one area on lines w/16 and w/10 apart, across each other.
+const AREA_TOL: f64 = 0.02;
+
+/// The explored area (km²) of some stages: the union of the stadiums of radius w/2 about
+/// every AUV segment, measured on columns of width c = w/16 along x. Each stadium is convex,
+/// so a column's centre line x = (i + ½)c meets it in one y-interval; the intervals of a
+/// column are merged and their lengths summed.
+fn explored_km2(stages: &[&Stage], w: f64) -> Option<f64> {
+    if !(w > 0.0 && w.is_finite()) {
+        return Some(0.0);
+    }
+    let (r, c) = (w / 2.0, w / 16.0);
+    let mut columns: std::collections::BTreeMap<i64, Vec<[f64; 2]>> = Default::default();
+    let mut budget = MAX_COLUMN_HITS;
+    for st in stages {
+        for auv in &st.auvs {
+            for s in auv.position.windows(2) {
+                let (a, b) = ([s[0][0], s[0][1]], [s[1][0], s[1][1]]);
+                if !a.iter().chain(&b).all(|v| v.is_finite()) {
+                    continue;
+                }
+                let first = ((a[0].min(b[0]) - r) / c - 0.5).ceil();
+                let last = ((a[0].max(b[0]) + r) / c - 0.5).floor();
+                budget -= last - first;
+                if budget < 0.0 {
+                    return None; // a path of thousands of kilometres: not measured
+                }
+                for i in first as i64..=last as i64 {
+                    let x = (i as f64 + 0.5) * c;
+                    if let Some(iv) = stadium_column(a, b, r, x) {
+                        columns.entry(i).or_default().push(iv);
+                    }
+                }
+            }
+        }
+    }
+    let mut area = 0.0;
+    for ivs in columns.values_mut() {
+        ivs.sort_by(|p, q| p[0].total_cmp(&q[0]));
+        let (mut lo, mut hi) = (ivs[0][0], ivs[0][1]);
+        for iv in ivs.iter().skip(1) {
+            if iv[0] > hi {
+                area += hi - lo;
+                (lo, hi) = (iv[0], iv[1]);
+            } else {
+                hi = hi.max(iv[1]);
+            }
+        }
+        area += hi - lo;
+    }
+    Some(area * c / 1e6)
+}
+
+/// Most (segment, column) pairs `explored_km2` measures: 25 AUVs × 4 windows × 40 steps of
+/// 600 m at w/16 = 3 m are 2·10⁷.
+const MAX_COLUMN_HITS: f64 = 1e8;
+
+/// The y-interval in which the line x = `x` meets the points within `r` of the segment a–b:
+/// the y of the line's points at distance r, found on the segment's two end discs and on
+/// the two long sides of its rectangle.
+fn stadium_column(a: [f64; 2], b: [f64; 2], r: f64, x: f64) -> Option<[f64; 2]> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for p in [a, b] {
+        let h = r * r - (x - p[0]).powi(2);
+        if h >= 0.0 {
+            (lo, hi) = (lo.min(p[1] - h.sqrt()), hi.max(p[1] + h.sqrt()));
+        }
+    }
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len = dx.hypot(dy);
+    if len > 0.0 && dx.abs() > 1e-12 * len {
+        // the rectangle's long sides, a ± r·n with n = (−dy, dx)/len, run from t = 0 to 1
+        for side in [-1.0, 1.0] {
+            let (ox, oy) = (a[0] - side * r * dy / len, a[1] + side * r * dx / len);
+            let t = (x - ox) / dx;
+            if (0.0..=1.0).contains(&t) {
+                let y = oy + t * dy;
+                (lo, hi) = (lo.min(y), hi.max(y));
+            }
+        }
+    } else if len > 0.0 && (x - a[0]).abs() <= r {
+        // a segment along y: the rectangle spans the segment's y range on every line it meets
+        (lo, hi) = (lo.min(a[1].min(b[1])), hi.max(a[1].max(b[1])));
+    }
+    (lo <= hi).then_some([lo, hi])
+}
 
 /// The recomputable metrics of some final stages: (energy, height sum, heights, least height,
 /// largest heading rate).
@@ -48,6 +143,78 @@ fn recompute(stages: &[&Stage], checker: &Checker) -> [f64; 4] {
 }
 
 impl Checker<'_> {
+    /// Whether p and q are joined by a usable link: in range and in line of sight.
+    fn usable(&self, p: [f64; 3], q: [f64; 3]) -> bool {
+        diff(p, q) <= self.s.acoustic.sonar_range + LENGTH_TOL
+            && matches!(self.los(p, q), Ok(c) if c.min_clearance >= -LOS_TOL)
+            && self.crossing(p, q).is_none()
+    }
+
+    /// Whether at step k of `st` every AUV reaches the USV through usable links: between any
+    /// two nodes (`planned` None), or only the planned links (every one of which must be
+    /// usable). None when a position is missing.
+    fn reaches(&self, st: &Stage, k: usize, planned: Option<&[Link]>) -> Option<bool> {
+        let n = st.auvs.len();
+        // node 0 is the USV, node i + 1 is AUV i
+        let who = |i: usize| i.checked_sub(1);
+        let pos: Vec<[f64; 3]> = (0..=n)
+            .map(|i| node(st, who(i), k))
+            .collect::<Option<_>>()?;
+        let mut edge = vec![vec![false; n + 1]; n + 1];
+        match planned {
+            None => {
+                for i in 0..=n {
+                    for j in i + 1..=n {
+                        let ok = self.usable(pos[i], pos[j]);
+                        (edge[i][j], edge[j][i]) = (ok, ok);
+                    }
+                }
+            }
+            Some(links) => {
+                for l in links {
+                    let (i, j) = (l.a + 1, l.b.map_or(0, |b| b + 1));
+                    if i > n || j > n || !self.usable(pos[i], pos[j]) {
+                        return Some(false);
+                    }
+                    (edge[i][j], edge[j][i]) = (true, true);
+                }
+            }
+        }
+        let mut reached = vec![false; n + 1];
+        reached[0] = true;
+        let mut queue = vec![0];
+        while let Some(i) = queue.pop() {
+            for j in 0..=n {
+                if edge[i][j] && !reached[j] {
+                    reached[j] = true;
+                    queue.push(j);
+                }
+            }
+        }
+        Some(reached.iter().all(|&r| r))
+    }
+
+    /// (connected fraction, chain fraction) over windows `w0..w1`, counting k = 0 of the first
+    /// only.
+    fn fractions(&self, w0: usize, w1: usize) -> [f64; 2] {
+        let (mut steps, mut connected, mut chain) = (0usize, 0usize, 0usize);
+        for (w, win) in self.plan.windows.iter().enumerate().take(w1).skip(w0) {
+            let st = &win.final_;
+            for k in usize::from(w > w0)..st.usv.position.len() {
+                steps += 1;
+                connected += usize::from(self.reaches(st, k, None) == Some(true));
+                let planned = win.links.links.get(k).map(Vec::as_slice);
+                chain += usize::from(
+                    planned.is_some_and(|l| self.reaches(st, k, Some(l)) == Some(true)),
+                );
+            }
+        }
+        if steps == 0 {
+            return [0.0; 2];
+        }
+        [connected, chain].map(|c| c as f64 / steps as f64)
+    }
+
     // ------------------------------------------------------------------------------------
     // recorded metrics
     // ------------------------------------------------------------------------------------
@@ -72,6 +239,60 @@ impl Checker<'_> {
             compare(&format!("window {w}"), &win.metrics, &finals[w..=w]);
         }
         compare("mission", &self.plan.metrics, &finals);
+        let nw = self.plan.windows.len();
+        let mut fractions = |what: String, m: &Metrics, w0: usize, w1: usize| {
+            let [connected, chain] = self.fractions(w0, w1);
+            for (name, stored, found) in [
+                ("connected_fraction", m.connected_fraction, connected),
+                ("chain_fraction", m.chain_fraction, chain),
+            ] {
+                f.record(-(stored - found).abs(), || {
+                    format!("{what} {name}: stored {stored}, recounted {found}")
+                });
+            }
+        };
+        for w in 0..nw {
+            fractions(
+                format!("window {w}"),
+                &self.plan.windows[w].metrics,
+                w,
+                w + 1,
+            );
+        }
+        fractions("mission".into(), &self.plan.metrics, 0, nw);
+        f.finish()
+    }
+
+    // ------------------------------------------------------------------------------------
+    // recorded explored area
+    // ------------------------------------------------------------------------------------
+    pub(super) fn explored_area(&self) -> FamilyResult {
+        let mut f = Family::new("recorded explored area", "relative", AREA_TOL);
+        let finals: Vec<&Stage> = self.plan.windows.iter().map(|w| &w.final_).collect();
+        let swath = self.s.auv.swath_width;
+        let nw = self.plan.windows.len();
+        let mut area = |what: String, m: &Metrics, w0: usize, w1: usize| {
+            let stored = m.explored_area_km2;
+            let Some(found) = explored_km2(&finals[w0..w1], swath) else {
+                f.record(f64::NEG_INFINITY, || {
+                    format!("{what}: paths too long to measure the explored area on")
+                });
+                return;
+            };
+            let off = (stored - found).abs() / stored.abs().max(found.abs()).max(1e-4);
+            f.record(-off, || {
+                format!("{what}: stored {stored} km², measured across {found} km²")
+            });
+        };
+        for w in 0..nw {
+            area(
+                format!("window {w}"),
+                &self.plan.windows[w].metrics,
+                w,
+                w + 1,
+            );
+        }
+        area("mission".into(), &self.plan.metrics, 0, nw);
         f.finish()
     }
 }

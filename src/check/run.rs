@@ -155,6 +155,7 @@ pub(super) fn run(plan: &Plan, floor: &Seafloor) -> CheckReport {
     families.extend(c.recorded());
     families.push(c.chain());
     families.push(c.metrics());
+    families.push(c.explored_area());
     let (objective, objectives) = c.objective();
     families.push(objective);
     families.extend(c.graph_families());

@@ -154,6 +154,7 @@ fn a_plan_without_step2_data_skips_the_graph_families() {
         win.graph = Default::default();
         win.links = Default::default();
     }
+    record_metrics(&mut plan, &floor); // no planned chain at any step: chain fraction 0
     let r = check_plan(&plan, &floor);
     assert!(r.passed(), "\n{}", r.table());
     for name in ALL {
@@ -166,6 +167,7 @@ fn a_plan_without_step2_data_skips_the_graph_families() {
     let mut p = build(&spec(2), &floor);
     p.windows[1].graph = Default::default();
     p.windows[1].links = Default::default();
+    record_metrics(&mut p, &floor);
     let r = check_plan(&p, &floor);
     assert_fails_exactly(&r, &["structure"]);
     assert!(r.problems[0].contains("window 1 has no Step 2 graph"));
@@ -173,6 +175,7 @@ fn a_plan_without_step2_data_skips_the_graph_families() {
     // a graph without a link report: the link families cannot be checked
     let mut p = build(&spec(2), &floor);
     p.windows[0].links = Default::default();
+    record_metrics(&mut p, &floor);
     let r = check_plan(&p, &floor);
     assert_fails_exactly(&r, &[IN_BAND, CHAIN_LOS]);
     assert!(r.family(IN_BAND).unwrap().where_.contains("no link report"));
@@ -184,6 +187,7 @@ fn a_cycle_in_the_a2a_edges_fails_the_path_family_only() {
     let mut plan = build(&spec3(1), &floor);
     plan.windows[0].graph.a2a[2] = vec![[0, 1], [1, 2], [0, 2]];
     fill_links(&mut plan); // the links follow the graph, so only the graph is wrong
+    record_metrics(&mut plan, &floor); // and so do the recorded fractions
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &[PATH]);
     let f = r.family(PATH).unwrap();
@@ -194,6 +198,7 @@ fn a_cycle_in_the_a2a_edges_fails_the_path_family_only() {
     let mut plan = build(&spec3(1), &floor);
     plan.windows[0].graph.a2a[3] = vec![[0, 1], [1, 0]];
     fill_links(&mut plan);
+    record_metrics(&mut plan, &floor);
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &[PATH]);
     let f = r.family(PATH).unwrap();
@@ -209,6 +214,7 @@ fn links_that_are_not_the_graph_fail_the_path_family_only() {
     let l = &mut plan.windows[0].links;
     l.links[1].pop();
     l.bands[1].pop();
+    record_metrics(&mut plan, &floor);
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &[PATH]);
     let f = r.family(PATH).unwrap();

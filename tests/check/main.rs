@@ -927,3 +927,32 @@ fn regression_recorded_metrics_are_recomputed() {
         assert_fails_exactly(&check_plan(&p, &floor), &["recorded metrics"]);
     }
 }
+
+/// Regression (issue 13): the connected and chain fractions and the explored area a plan
+/// records were taken on trust. They are recounted with the checker's own links, and the area
+/// is measured on columns across the planner's strips (within 2 %).
+#[test]
+fn regression_recorded_fractions_and_area_are_verified() {
+    let floor = flat();
+    let good = build(&spec(2), &floor);
+    let r = check_plan(&good, &floor);
+    assert!(r.passed(), "{}", r.table());
+    let area = r.family("recorded explored area").unwrap();
+    assert!(area.checked == 3 && area.worst_margin > -0.02, "{area:?}");
+    for tamper in [
+        (|p: &mut Plan| p.metrics.connected_fraction = 0.5) as fn(&mut Plan),
+        |p| p.windows[1].metrics.chain_fraction -= 0.05,
+    ] {
+        let mut p = good.clone();
+        tamper(&mut p);
+        assert_fails_exactly(&check_plan(&p, &floor), &["recorded metrics"]);
+    }
+    for tamper in [
+        (|p: &mut Plan| p.metrics.explored_area_km2 *= 1.05) as fn(&mut Plan),
+        |p| p.windows[0].metrics.explored_area_km2 = 0.0,
+    ] {
+        let mut p = good.clone();
+        tamper(&mut p);
+        assert_fails_exactly(&check_plan(&p, &floor), &["recorded explored area"]);
+    }
+}
