@@ -167,6 +167,32 @@ pub const OUT_OF_BAND_REL_TOL: f64 = 1e-6;
 /// the bilinear floor; a link touching the floor has line of sight).
 pub const LOS_TOL: f64 = 1e-6;
 
+/// Indent of the line(s) under a family's row that say where its worst margin is.
+pub const WHERE_INDENT: &str = "    at ";
+
+/// `text` cut at spaces into lines of at most `width` characters (a longer word stays whole);
+/// none for an empty text. Continuation lines are indented by two spaces.
+fn wrap_words(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut current = String::new();
+    for word in text.split(' ') {
+        let limit = if lines.is_empty() { width } else { width - 2 };
+        if !current.is_empty() && current.chars().count() + 1 + word.chars().count() > limit {
+            lines.push(std::mem::take(&mut current));
+        }
+        if !current.is_empty() {
+            current.push(' ');
+        } else if !lines.is_empty() {
+            current.push_str("  ");
+        }
+        current.push_str(word);
+    }
+    if !current.trim().is_empty() {
+        lines.push(current);
+    }
+    lines
+}
+
 /// The result of one constraint family.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FamilyResult {
@@ -246,9 +272,8 @@ impl CheckReport {
             "unit",
             "tolerance",
             "result",
-            "where (worst)",
         ];
-        let rows: Vec<[String; 7]> = self
+        let rows: Vec<[String; 6]> = self
             .families
             .iter()
             .map(|f| {
@@ -263,7 +288,6 @@ impl CheckReport {
                     f.unit.to_string(),
                     fmt_num(f.tolerance),
                     if f.passed() { "PASS" } else { "FAIL" }.into(),
-                    f.where_.clone(),
                 ]
             })
             .collect();
@@ -294,8 +318,17 @@ impl CheckReport {
         };
         line(&mut out, &head.map(String::from));
         line(&mut out, &width.map(|w| "-".repeat(w)));
-        for r in &rows {
+        // where the worst margin is, under its row, wrapped to the table's width (at least
+        // 60 columns): the table stays about 100 columns wide (it was 210 with the place as a
+        // seventh column)
+        let total: usize = width.iter().sum::<usize>() + 2 * (width.len() - 1);
+        for (r, f) in rows.iter().zip(&self.families) {
             line(&mut out, r);
+            for piece in wrap_words(&f.where_, total.max(60) - WHERE_INDENT.len()) {
+                out.push_str(WHERE_INDENT);
+                out.push_str(&piece);
+                out.push('\n');
+            }
         }
         if !self.objectives.is_empty() {
             out.push('\n');

@@ -830,13 +830,39 @@ fn the_table_is_aligned_and_names_every_family() {
     let floor = flat();
     let r = check_plan(&build(&spec(1), &floor), &floor);
     let table = r.table();
-    let lines: Vec<&str> = table.lines().collect();
+    let lines: Vec<&str> = table.lines().filter(|l| !l.starts_with(' ')).collect();
     assert!(lines[0].starts_with("family"));
     let col = lines[0].find("result").unwrap();
     for (line, f) in lines[2..].iter().zip(&r.families) {
         assert!(line.starts_with(f.name), "{line}");
         let result: String = line.chars().skip(col).take(4).collect();
         assert_eq!(result, "PASS", "{line}");
+    }
+}
+
+/// Regression (issue 13): the check table was 210 columns wide, the place of each worst
+/// margin a seventh column. The place now goes under its row, wrapped: no line is wider than
+/// the table's six columns (100 characters), and every word of every place is there.
+#[test]
+fn regression_the_check_table_is_at_most_100_columns_wide() {
+    let floor = flat();
+    let mut plan = build(&spec(1), &floor);
+    plan.windows[0].final_.auvs[0].position[1][2] += 1000.0; // above the surface: long places
+    let r = check_plan(&plan, &floor);
+    let table = r.table();
+    let rows = table.split("\n\n").next().unwrap();
+    for line in rows.lines() {
+        assert!(
+            line.chars().count() <= 100,
+            "{} wide: {line}",
+            line.chars().count()
+        );
+    }
+    let flat_table: Vec<&str> = rows.split_whitespace().collect();
+    for f in &r.families {
+        for word in f.where_.split_whitespace() {
+            assert!(flat_table.contains(&word), "{word:?} of {:?}", f.where_);
+        }
     }
 }
 
