@@ -522,3 +522,44 @@ fn regression_a_mostly_land_grid_is_not_only_called_a_depth_grid() {
         "{w}"
     );
 }
+
+/// Regression (issue 13): `seafloor info` suggested the centre of a coastal grid as the
+/// mission's origin without saying it is on land. It now names the nearest water node and
+/// how far it is; a grid whose centre is water keeps the centre.
+#[test]
+fn regression_info_suggests_the_nearest_water_node_for_a_land_centre() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, _, nd) = survey();
+    // land (+10 m) west of column 24, water (−50 m) from it on: the centre (20, 15) is land
+    let coast: Vec<f64> = (0..l.nx * l.ny)
+        .map(|k| if k % l.nx < 24 { 10.0 } else { -50.0 })
+        .collect();
+    let p = tif(
+        dir.path(),
+        "coast.tif",
+        (&l, &coast, &vec![false; nd.len()]),
+        &UTM,
+        SampleType::Float32,
+        strips(TiffCompression::None),
+    );
+    let i = info(&p, Values::Elevation).unwrap();
+    let ([x, y], d) = i.water_origin.expect("a water node");
+    assert_eq!([x, y], [l.x0 + 24.0 * l.dx, l.y0 + 15.0 * l.dy]);
+    assert!((d - 80.0).abs() < 1e-9, "{d}");
+    let text = i.to_string();
+    assert!(
+        text.contains("the grid centre is on land or NODATA; the nearest water node is x = 500490.0, y = 4700387.5 m, 80 m from it"),
+        "{text}"
+    );
+    // the survey grid's centre is water: no other suggestion
+    let (l, z, nd) = survey();
+    let p = tif(
+        dir.path(),
+        "s.tif",
+        (&l, &z, &nd),
+        &UTM,
+        SampleType::Float32,
+        strips(TiffCompression::None),
+    );
+    assert_eq!(info(&p, Values::Elevation).unwrap().water_origin, None);
+}

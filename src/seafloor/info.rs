@@ -2,7 +2,9 @@
 
 use super::crs::CrsSource;
 use super::geo::LocalFrame;
-use super::load::{frame_for, sign_warning, Crs, GridFormat, OpenedGrid, Values};
+use super::load::{
+    frame_for, sign_warning, Crs, GridFile, GridFormat, NodeWindow, OpenedGrid, Values,
+};
 use super::{Lattice, SeafloorError};
 use std::fmt;
 use std::path::Path;
@@ -42,6 +44,10 @@ pub struct GridInfo {
     /// The suggested mission origin: the grid's centre, [lat, lon] for a geographic grid,
     /// [x, y] in the grid's own metres otherwise.
     pub origin: [f64; 2],
+    /// When the centre node is land or NODATA (a coastal grid): the water node (data below sea
+    /// level) nearest to it, in the same form as `origin`, and its distance from the centre in
+    /// metres. None when the centre is water, or no water node lies within 2048 nodes of it.
+    pub water_origin: Option<([f64; 2], f64)>,
     /// Likely mistakes (the sign convention) and assumptions (a datum taken as WGS84); not
     /// part of the Display text.
     pub warnings: Vec<String>,
@@ -106,7 +112,19 @@ pub fn info_with_crs(
             Some([native.x0, native.x_max(), native.y0, native.y_max()]),
         ),
     };
+    let water_origin = if land + nodata == 0 {
+        None
+    } else {
+        nearest_water(&mut file, &native, sign, cell_m)?.map(|([x, y], d)| {
+            let at = match crs {
+                Crs::Geographic { .. } => [y, x], // [lat, lon]
+                _ => [x, y],
+            };
+            (at, d)
+        })
+    };
     Ok(GridInfo {
+        water_origin,
         path: name,
         format,
         driver,
@@ -123,6 +141,60 @@ pub fn info_with_crs(
         origin,
         warnings,
     })
+}
+
+/// Half-sizes (nodes) of the windows about the centre node that `nearest_water` reads in
+/// turn: at most 4097 × 4097 nodes are held at once.
+const WATER_SEARCH: [usize; 4] = [16, 128, 512, 2048];
+
+/// The water node (data, below sea level after `sign`) nearest the grid's centre node, as
+/// native (x, y), and its distance in metres (`cell_m`: metres per node step); None when the
+/// centre node is water or none lies within the largest window of `WATER_SEARCH`.
+fn nearest_water(
+    file: &mut GridFile,
+    n: &Lattice,
+    sign: f64,
+    cell_m: [f64; 2],
+) -> Result<Option<([f64; 2], f64)>, SeafloorError> {
+    let (ic, jc) = ((n.nx - 1) / 2, (n.ny - 1) / 2);
+    for h in WATER_SEARCH {
+        let (i0, j0) = (ic.saturating_sub(h), jc.saturating_sub(h));
+        let (i1, j1) = ((ic + h).min(n.nx - 1), (jc + h).min(n.ny - 1));
+        let w = NodeWindow {
+            i0,
+            j0,
+            nx: i1 - i0 + 1,
+            ny: j1 - j0 + 1,
+        };
+        let (z, missing) = file.read(w)?;
+        let mut best: Option<(f64, usize, usize)> = None;
+        for (k, (&raw, &m)) in z.iter().zip(&missing).enumerate() {
+            let water = sign * raw < 0.0; // false for NaN
+            if m || !water {
+                continue;
+            }
+            let (i, j) = (i0 + k % w.nx, j0 + k / w.nx);
+            let d = ((i as f64 - ic as f64) * cell_m[0]).hypot((j as f64 - jc as f64) * cell_m[1]);
+            if best.map_or(true, |b| d < b.0) {
+                best = Some((d, i, j));
+            }
+        }
+        let whole = w.nx == n.nx && w.ny == n.ny;
+        if let Some((d, i, j)) = best {
+            if d == 0.0 {
+                return Ok(None); // the centre is water
+            }
+            // nearer than any node outside this window, or nothing left outside it
+            if d <= h as f64 * cell_m[0].min(cell_m[1]) || whole || h == WATER_SEARCH[3] {
+                let x = n.x0 + i as f64 * n.dx;
+                let y = n.y0 + j as f64 * n.dy;
+                return Ok(Some(([x, y], d)));
+            }
+        } else if whole {
+            return Ok(None);
+        }
+    }
+    Ok(None)
 }
 
 /// The bounding box of the grid's boundary nodes in the frame; None if any lies beyond the
@@ -258,6 +330,24 @@ impl fmt::Display for GridInfo {
             pct(self.land_nodes)
         )?;
         let [a, b] = self.origin;
+        if let Some(([c, d], dist)) = self.water_origin {
+            let (what, set) = if geographic {
+                (
+                    format!("({c:.6}°, {d:.6}°)"),
+                    format!("seafloor.origin = [{c:.6}, {d:.6}]"),
+                )
+            } else {
+                (
+                    format!("x = {c:.1}, y = {d:.1} m"),
+                    format!("[initial] usv = [{c:.1}, {d:.1}]"),
+                )
+            };
+            return writeln!(
+                f,
+                "origin      the grid centre is on land or NODATA; the nearest water node is \
+                 {what}, {dist:.0} m from it: start there ({set})"
+            );
+        }
         if geographic {
             writeln!(
                 f,
