@@ -282,6 +282,32 @@ fn every_format_gives_the_geotiffs_floor_and_a_plan_over_each_passes_its_check()
     }
 }
 
+/// Regression (issue 13): reading NetCDF-4 files, HDF5 printed its error stack on stderr for
+/// every optional attribute netCDF-C probes (over 500 lines in these tests) although nothing
+/// was wrong. HDF5's automatic printing is now off. The other tests of this file, which read
+/// NetCDF-4 files in-process one after another (the noise came from the later reads), are
+/// run again in a child process whose stderr is read.
+#[test]
+fn regression_reading_netcdf4_files_prints_no_hdf5_diagnostics() {
+    let me = std::env::current_exe().unwrap();
+    let out = Command::new(me)
+        .args([
+            "--test-threads=1",
+            "--skip",
+            "regression_reading_netcdf4_files_prints_no_hdf5_diagnostics",
+        ])
+        .output()
+        .unwrap();
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(out.status.success(), "{stdout}\n{stderr}");
+    assert!(stdout.contains("3 passed"), "{stdout}");
+    let noise = stderr.lines().filter(|l| l.contains("HDF5")).count();
+    assert_eq!(noise, 0, "{stderr}");
+}
+
 #[test]
 fn a_geographic_netcdf_plans_like_its_geotiff_and_the_cli_checks_it() {
     let dir = tempfile::tempdir().unwrap();

@@ -69,9 +69,35 @@ fn install_error_handler() {
             if class == CplErrType::Warning {
                 GDAL_WARNINGS.with(|w| w.borrow_mut().push(msg.trim().to_string()));
             }
-        })
+        });
     });
 }
+
+/// Turns off HDF5's automatic printing of its error stack. netCDF-C, under GDAL's netCDF
+/// driver, probes optional attributes of a NetCDF-4 file through HDF5, and HDF5 printed every
+/// failed probe (about 12 lines each, over 500 lines for the gdal tests) on stderr although
+/// nothing was wrong (issue 13). GDAL's own HDF5 driver does the same thing,
+/// H5Eset_auto2(H5E_DEFAULT, NULL, NULL). The function is looked up in the process (libgdal
+/// loads libhdf5 through libnetcdf); where it is absent nothing is done. A thread-safe HDF5
+/// (Debian's) keeps the setting per thread, so every open calls it.
+#[cfg(unix)]
+fn silence_hdf5() {
+    // herr_t H5Eset_auto2(hid_t estack_id, H5E_auto2_t func, void *client_data);
+    // hid_t is int64_t from HDF5 1.10 on; H5E_DEFAULT is 0
+    type SetAuto = unsafe extern "C" fn(i64, *const libc::c_void, *const libc::c_void) -> i32;
+    // SAFETY: dlsym with a NUL-terminated name; a non-null result is HDF5's H5Eset_auto2,
+    // whose C signature SetAuto follows, called with the default stack and no handler.
+    unsafe {
+        let sym = libc::dlsym(libc::RTLD_DEFAULT, c"H5Eset_auto2".as_ptr());
+        if !sym.is_null() {
+            let set_auto: SetAuto = std::mem::transmute::<*mut libc::c_void, SetAuto>(sym);
+            set_auto(0, std::ptr::null(), std::ptr::null());
+        }
+    }
+}
+
+#[cfg(not(unix))]
+fn silence_hdf5() {}
 
 fn take_gdal_warnings() -> Vec<String> {
     GDAL_WARNINGS.with(|w| std::mem::take(&mut *w.borrow_mut()))
@@ -96,6 +122,7 @@ impl GdalGrid {
             reason,
         };
         install_error_handler();
+        silence_hdf5(); // per thread: a thread-safe HDF5 keeps the setting per thread
         take_gdal_warnings();
         let options = DatasetOptions {
             open_flags: GdalOpenFlags::GDAL_OF_RASTER | GdalOpenFlags::GDAL_OF_VERBOSE_ERROR,
