@@ -41,6 +41,12 @@ pub trait ScpProblem {
     fn evaluate(&self, x: &Self::Iterate) -> Evaluation;
     /// An error for a constraint that stays violated at convergence with the largest penalty.
     fn infeasible(&self, x: &Self::Iterate) -> Self::Error;
+    /// Whether `e`, from [`solve_model`](ScpProblem::solve_model), is the convex solver's
+    /// numerical trouble with this model (not an infeasible model): the loop then treats the
+    /// iteration as a rejected step and shrinks the trust region. None by default.
+    fn numerical_trouble(&self, _e: &Self::Error) -> bool {
+        false
+    }
 }
 
 /// One SCP iteration, as the loop reports it to its observer.
@@ -127,6 +133,8 @@ const RHO2: f64 = 0.7;
 const SHRINK: f64 = 2.0;
 const GROW: f64 = 2.0;
 const PENALTY_GROWTH: f64 = 10.0;
+/// Retries, each with half the trust radius, of a convex solve that ends in numerical trouble.
+const TROUBLE_RETRIES: usize = 3;
 const PENALTY_MAX_FACTOR: f64 = 1e4;
 /// Accepted iterations after a rejection during which Δ may not grow. Without it a floor that
 /// the model can trust for 25 m but not 50 m makes the loop alternate accept (25 m, ρ ≈ 1, grow)
@@ -163,8 +171,21 @@ where
 
     // why the loop ends if it does not converge
     let mut status = ScpStatus::MaxIterations;
+    let mut troubles = 0usize;
     for it in 0..settings.max_iterations {
-        let (candidate, model_merit, report) = problem.solve_model(&reference, radius, penalty)?;
+        let (candidate, model_merit, report) =
+            match problem.solve_model(&reference, radius, penalty) {
+                Ok(solved) => solved,
+                // the solver's numerical trouble: a smaller model, as after a rejected step (at
+                // most `TROUBLE_RETRIES` in a row; not an iteration of the log, which holds solves)
+                Err(e) if problem.numerical_trouble(&e) && troubles < TROUBLE_RETRIES => {
+                    troubles += 1;
+                    radius /= SHRINK;
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
+        troubles = 0;
         let candidate_eval = problem.evaluate(&candidate);
         let phi_ref = reference_eval.merit(penalty);
         let phi_cand = candidate_eval.merit(penalty);
@@ -280,13 +301,19 @@ mod tests {
     /// The optimum is x = y = 1, objective 2.
     struct Hyperbola {
         solver: Option<ConicSolver>,
+        /// A model with a trust radius above this fails as a solver in numerical trouble
+        /// would (`Fail::Trouble`).
+        trouble_above: f64,
     }
 
-    #[derive(Debug)]
-    struct Fail;
+    #[derive(Debug, PartialEq)]
+    enum Fail {
+        Other,
+        Trouble,
+    }
     impl From<ScpFailure> for Fail {
         fn from(_: ScpFailure) -> Self {
-            Fail
+            Fail::Other
         }
     }
 
@@ -300,6 +327,9 @@ mod tests {
             radius: f64,
             penalty: f64,
         ) -> Result<([f64; 2], f64, ()), Fail> {
+            if radius > self.trouble_above {
+                return Err(Fail::Trouble);
+            }
             // variables x, y, ν; g_lin = 1 − x̄ȳ − ȳ(x − x̄) − x̄(y − ȳ) ≤ ν
             let mut p = Triplets::default();
             p.push(0, 0, 2.0);
@@ -346,7 +376,10 @@ mod tests {
             }
         }
         fn infeasible(&self, _: &[f64; 2]) -> Fail {
-            Fail
+            Fail::Other
+        }
+        fn numerical_trouble(&self, e: &Fail) -> bool {
+            *e == Fail::Trouble
         }
     }
 
@@ -360,7 +393,10 @@ mod tests {
         };
         let mut seen = 0;
         let out = solve(
-            &mut Hyperbola { solver: None },
+            &mut Hyperbola {
+                solver: None,
+                trouble_above: f64::INFINITY,
+            },
             [3.0, 0.5],
             &settings,
             &mut |_| seen += 1,
@@ -371,5 +407,35 @@ mod tests {
         assert!((out.iterate[0] - 1.0).abs() < 1e-4, "{:?}", out.iterate);
         assert!((out.iterate[1] - 1.0).abs() < 1e-4, "{:?}", out.iterate);
         assert!(out.evaluation.max_violation < 1e-6);
+    }
+
+    /// Regression (issue 13's property test: "step3: the convex subproblem failed: Clarabel
+    /// status NumericalError" on a feasible mission): a convex solve in numerical trouble ended
+    /// the plan. The loop now treats it as a rejected step, and the smaller model solves: here
+    /// every model with a radius above 0.2 fails, and the loop still finds the optimum from a
+    /// radius of 0.5; with trouble at every radius it gives up after 3 retries in a row.
+    #[test]
+    fn regression_a_solve_in_numerical_trouble_is_a_rejected_step() {
+        let settings = Scp {
+            trust_region: 0.5,
+            penalty: 10.0,
+            tolerance: 1e-7,
+            ..Scp::default()
+        };
+        let mut problem = Hyperbola {
+            solver: None,
+            trouble_above: 0.2,
+        };
+        let out = solve(&mut problem, [3.0, 0.5], &settings, &mut |it| {
+            assert!(it.trust_region <= 0.2 * GROW);
+        });
+        let out = out.unwrap();
+        assert!((out.iterate[0] - 1.0).abs() < 1e-4, "{:?}", out.iterate);
+        let mut always = Hyperbola {
+            solver: None,
+            trouble_above: 0.0,
+        };
+        let e = solve(&mut always, [3.0, 0.5], &settings, &mut |_| {});
+        assert_eq!(e.err(), Some(Fail::Trouble));
     }
 }

@@ -376,6 +376,10 @@ impl ScpProblem for TeamProblem<'_> {
         }
     }
 
+    fn numerical_trouble(&self, e: &PlanError) -> bool {
+        matches!(e, PlanError::Solver { status, .. } if status.numerical_trouble())
+    }
+
     fn infeasible(&self, t: &Trajectory) -> PlanError {
         let l = self.layout;
         let mut worst = (0.0, String::new());
