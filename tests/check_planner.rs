@@ -172,6 +172,12 @@ mod random {
                 }
             }
         }
+    }
+
+    proptest! {
+        // a few hundred draws in CI (about 0.2 s each); the large sweep is
+        // examples/feasible_sweep.rs
+        #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
 
         /// Issue 13: scenarios from the whole space users set (vehicle speeds 0.2–3 m/s, δ
         /// 10–200 s, d_s 60–400 m, teams and horizons small enough for CI;
@@ -319,6 +325,32 @@ fn regression_a_window_that_starts_at_the_grid_edge_plans() {
     let r = check_plan(&p, &f);
     assert!(r.passed(), "\n{}", r.table());
     assert_eq!(p.metrics.connected_fraction, 1.0);
+}
+
+/// Regression (issue 13's property test, case 42 of 300): "step3: the convex subproblem failed:
+/// Clarabel status NumericalError after 24 interior-point iterations" on a feasible mission.
+/// A solve in numerical trouble is now solved again with iterative refinement, and if it still
+/// fails the SCP takes it as a rejected step (a smaller trust region).
+#[test]
+fn regression_a_solver_numerical_error_is_not_the_end_of_the_plan() {
+    let mut s = Scenario {
+        seed: 492619,
+        ..Scenario::default()
+    };
+    s.team.auvs = 4;
+    s.horizon.steps = 7;
+    s.horizon.dt = 48.829932772949356;
+    s.acoustic.sonar_range = 209.0062125455294;
+    s.acoustic.band_tolerance = 41.80124250910588;
+    s.acoustic.max_range = 418.0124250910588;
+    s.auv.max_speed = 1.3731034601038403;
+    s.usv.max_speed = 0.7196998815489309;
+    s.seafloor.synthetic.seamounts = 40;
+    s.seafloor.synthetic.valleys = 25;
+    let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
+    let p = plan_on(&s, &f, source);
+    let r = check_plan(&p, &f);
+    assert!(r.passed(), "\n{}", r.table());
 }
 
 /// Regression (issue 13): at `acoustic.resolution` = 1–2 m (default 5 m) the planner wrote

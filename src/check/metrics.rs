@@ -8,7 +8,7 @@
 //! of the first window and k = 1..=K of the later ones) are recounted with the checker's own
 //! links (in range within `LENGTH_TOL`, in sight within `LOS_TOL`, over no obstacle cell) and
 //! must match exactly. The explored area, the union of every AUV segment's swath (the points
-//! within w/2 of it, w = `auv.swath_width`), is measured on columns of width w/16 along x,
+//! within w/2 of it, w = `auv.swath_width`), is measured on columns of width w/32 along x,
 //! exactly along each column's centre line; the planner measures it on strips along y, so the
 //! two are independent estimates of one area and must agree within [`AREA_TOL`].
 
@@ -20,19 +20,22 @@ use crate::plan::{Link, Metrics, Stage};
 /// Relative tolerance of a recomputed metric.
 const METRIC_TOL: f64 = 1e-6;
 
-/// Relative tolerance of the recomputed explored area (at least 10⁻⁴ km² absolute): two
-/// midpoint rules of one area on lines w/16 and w/10 apart, across each other.
-const AREA_TOL: f64 = 0.02;
+/// Relative tolerance of the recomputed explored area: two midpoint rules of one area, on
+/// lines w/32 (here) and w/10 (the planner) apart, across each other. Along a straight swath
+/// both are nearly exact (0.02 % apart on the default plan); the round ends of a swath are
+/// where they differ, up to 2.2 % for one AUV over two steps (issue 13's property test), so
+/// 5 %: a recorded area off by more is not the plan's.
+const AREA_TOL: f64 = 0.05;
 
 /// The explored area (km²) of some stages: the union of the stadiums of radius w/2 about
-/// every AUV segment, measured on columns of width c = w/16 along x. Each stadium is convex,
+/// every AUV segment, measured on columns of width c = w/32 along x. Each stadium is convex,
 /// so a column's centre line x = (i + ½)c meets it in one y-interval; the intervals of a
 /// column are merged and their lengths summed.
 fn explored_km2(stages: &[&Stage], w: f64) -> Option<f64> {
     if !(w > 0.0 && w.is_finite()) {
         return Some(0.0);
     }
-    let (r, c) = (w / 2.0, w / 16.0);
+    let (r, c) = (w / 2.0, w / 32.0);
     let mut columns: std::collections::BTreeMap<i64, Vec<[f64; 2]>> = Default::default();
     let mut budget = MAX_COLUMN_HITS;
     for st in stages {
@@ -75,7 +78,7 @@ fn explored_km2(stages: &[&Stage], w: f64) -> Option<f64> {
 }
 
 /// Most (segment, column) pairs `explored_km2` measures: 25 AUVs × 4 windows × 40 steps of
-/// 600 m at w/16 = 3 m are 2·10⁷.
+/// 600 m at w/32 = 1.6 m are 4·10⁷.
 const MAX_COLUMN_HITS: f64 = 1e8;
 
 /// The y-interval in which the line x = `x` meets the points within `r` of the segment a–b:
