@@ -84,7 +84,7 @@
 //! | window chain | [`CHAIN_TOL`] = 1e-9 (m, m/s) | a copy |
 //! | objective | [`OBJECTIVE_REL_TOL`] = 1e-6 relative | |
 //! | recorded metrics (energy, heights, heading rate; connected and chain fractions; `metrics`) | 1e-6 relative (fractions: 1e-6) | recomputed sums, recounted steps |
-//! | recorded explored area (`metrics`) | [`AREA_TOL`](metrics) = 5 % relative | measured across the planner's strips |
+//! | recorded explored area (`metrics`) | `AREA_TOL` = 5 % relative | measured across the planner's strips |
 //! | A2A Hamiltonian path | 0 problems | combinatorial facts |
 //! | A2U link | [`A2U_TIE_TOL`] = 1e-9 m | ties between equally near AUVs |
 //! | link bands within [0, d_s] | [`BAND_LIMIT_TOL`] = 1e-9 m | recorded numbers |
