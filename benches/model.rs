@@ -67,7 +67,12 @@ fn model(c: &mut Criterion) {
         let step1 = shoal::step1::solve(&mut p2, None, &mut |_| {})
             .expect("P2")
             .iterate;
-        let graph = shoal::step2::solve(&step1, &b.floor, s.acoustic.resolution);
+        let graph = shoal::step2::solve(
+            &step1,
+            &b.floor,
+            s.acoustic.resolution,
+            s.acoustic.sonar_range,
+        );
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
         let mut p5 = new_problem().with_links(links);
         let radius = s.acoustic.band_tolerance.min(s.scp.trust_region);

@@ -285,7 +285,12 @@ fn run(
             stage: &step1,
         });
         // Step 2 (P3, P4), lines 13–16
-        let graph = step2::solve(&out1.iterate, floor, s.acoustic.resolution);
+        let graph = step2::solve(
+            &out1.iterate,
+            floor,
+            s.acoustic.resolution,
+            s.acoustic.sonar_range,
+        );
         progress(Progress::Step2 {
             window: w,
             graph: &graph,

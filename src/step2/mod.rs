@@ -6,7 +6,14 @@
 //! (NODATA or land, `Seafloor::segment_obstacle`): among the Hamiltonian paths with the fewest
 //! such edges it takes the longest (`p4_hamiltonian::longest_path_avoiding`). No link sees through an
 //! obstacle, and P5 cannot make two AUVs on either side of one see each other by pulling them
-//! together (they would have to go round it). Over a grid without obstacles nothing changes.
+//! together (they would have to go round it).
+//!
+//! Departure: an A2A edge longer than d_s at Step 1's positions counts as blocked too, so P4
+//! takes the longest of the paths with the fewest out-of-range edges. The longest path alone
+//! can join the two AUVs farthest apart (230 m with d_s = 155 m, from a start where each AUV
+//! was in range of another), and P5, whose bands are soft, then stalled with the edge 75 m out
+//! of range and the chain broken (issue 13's property test: N = 4, δ = 25 s). Where every
+//! Hamiltonian path has an edge out of range, P4 is as before.
 
 pub mod p3_a2u;
 pub mod p4_hamiltonian;
@@ -18,8 +25,9 @@ use p3_a2u::a2u_link;
 use p4_hamiltonian::longest_path_avoiding;
 use std::time::Instant;
 
-/// P3 and P4 at every step k = 0..=K of `t`, over `floor` sampled at `resolution` (𝓛_r).
-pub fn solve(t: &Trajectory, floor: &Seafloor, resolution: f64) -> Graph {
+/// P3 and P4 at every step k = 0..=K of `t`, over `floor` sampled at `resolution` (𝓛_r), with
+/// sonar range d_s = `sonar_range`.
+pub fn solve(t: &Trajectory, floor: &Seafloor, resolution: f64, sonar_range: f64) -> Graph {
     let clock = Instant::now();
     let steps = t.usv_p.len();
     let mut g = Graph {
@@ -32,14 +40,15 @@ pub fn solve(t: &Trajectory, floor: &Seafloor, resolution: f64) -> Graph {
         let points: Vec<[f64; 3]> = t.auv_p.iter().map(|p| p[k]).collect();
         // a team has at least one AUV (scenario validation), so there is a nearest one
         g.a2u.push(a2u_link(t.usv_p[k], &points).unwrap_or(0));
-        let crosses = |i: usize, j: usize| {
-            floor.has_obstacles()
-                && matches!(
-                    floor.segment_obstacle(points[i], points[j], resolution),
-                    Ok(Some(_))
-                )
+        let blocked = |i: usize, j: usize| {
+            let (a, b) = (points[i], points[j]);
+            let length =
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+            length > sonar_range
+                || floor.has_obstacles()
+                    && matches!(floor.segment_obstacle(a, b, resolution), Ok(Some(_)))
         };
-        let path = longest_path_avoiding(&points, crosses);
+        let path = longest_path_avoiding(&points, blocked);
         g.exact &= path.exact;
         g.a2a.push(path.edges());
     }
