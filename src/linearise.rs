@@ -85,6 +85,38 @@ pub fn usv_away(d_ref: [f64; 2]) -> (f64, [f64; 2]) {
     )
 }
 
+/// The nearest point to `p` of the polyline through `track` (one point: that point).
+/// `track` must not be empty.
+pub fn nearest_on_track(p: [f64; 2], track: &[[f64; 2]]) -> [f64; 2] {
+    let mut best = (f64::INFINITY, track[0]);
+    for (i, a) in track.iter().enumerate() {
+        let b = track.get(i + 1).unwrap_or(a);
+        let (ab, ap) = ([b[0] - a[0], b[1] - a[1]], [p[0] - a[0], p[1] - a[1]]);
+        let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+        let t = if len2 > 0.0 {
+            ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let c = [a[0] + t * ab[0], a[1] + t * ab[1]];
+        let d2 = (p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2);
+        if d2 < best.0 {
+            best = (d2, c);
+        }
+    }
+    best.1
+}
+
+/// OF1_8 measured from the USV's track (`usv.away_from = "track"`): −min over the polyline
+/// through `track` of ‖p − q‖², linearised about p̄: returns (value at p̄, gradient −2(p̄ − c)),
+/// c the nearest point of the track (the gradient of the squared distance to a convex set,
+/// here the nearest segment's). With `track` one point P\[0\] it is [`usv_away`] of p̄ − P\[0\],
+/// the paper's term.
+pub fn usv_away_track(p: [f64; 2], track: &[[f64; 2]]) -> (f64, [f64; 2]) {
+    let c = nearest_on_track(p, track);
+    usv_away([p[0] - c[0], p[1] - c[1]])
+}
+
 /// The length ‖d‖ of a link (d = P_a − P_b) and its gradient, the unit direction n̂, about d̄:
 /// the lower end of C5_2/C5_3 is linearised as ‖d̄‖ + n̂ᵀ(d − d̄) = n̂ᵀd. Below 1 µm the
 /// direction is undefined and the x axis is used (the linearisation is then merely valid).
@@ -245,6 +277,37 @@ mod tests {
                     );
                 }
             }
+        }
+
+        #[test]
+        fn usv_away_track_gradient_matches_finite_differences(
+            x in -3e3..3e3f64, y in -3e3..3e3f64, bx in -2e3..2e3f64, by in -2e3..2e3f64,
+        ) {
+            // the squared distance to one segment (a convex set) is differentiable everywhere
+            let track = [[0.0, 0.0], [bx, by]];
+            let (_, g) = usv_away_track([x, y], &track);
+            let f = fd2(|p| usv_away_track(p, &track).0, [x, y], 1e-3);
+            prop_assert!((g[0] - f[0]).abs() < 1e-4 * (1.0 + f[0].abs()));
+            prop_assert!((g[1] - f[1]).abs() < 1e-4 * (1.0 + f[1].abs()));
+        }
+
+        #[test]
+        fn the_track_distance_is_the_least_over_its_points(
+            x in -3e3..3e3f64, y in -3e3..3e3f64, turn in -3.0..3.0f64,
+        ) {
+            // an L-shaped track, sampled every 0.1 m: no sample is nearer than the nearest point
+            let track = [[0.0, 0.0], [1000.0, 0.0], [1000.0 + 500.0 * turn.cos(), 500.0 * turn.sin()]];
+            let d2 = -usv_away_track([x, y], &track).0;
+            let mut least = f64::INFINITY;
+            for s in track.windows(2) {
+                for i in 0..=10_000 {
+                    let t = i as f64 / 10_000.0;
+                    let q = [s[0][0] + t * (s[1][0] - s[0][0]), s[0][1] + t * (s[1][1] - s[0][1])];
+                    least = least.min((x - q[0]).powi(2) + (y - q[1]).powi(2));
+                }
+            }
+            prop_assert!(d2 <= least + 1e-9 * (1.0 + least));
+            prop_assert!(least.sqrt() - d2.sqrt() < 0.1);
         }
 
         #[test]

@@ -636,16 +636,26 @@ fn plan(
             files.len()
         );
         print!("{}", check.table());
+        let unconverged = written
+            .windows
+            .iter()
+            .flat_map(|w| [&w.step1, &w.final_])
+            .filter(|st| st.status != "converged")
+            .count();
         if !check.passed() {
             println!("check: VIOLATED (see FAIL rows)");
-        } else if written.warnings.is_empty() {
-            println!("check: every constraint holds");
-        } else {
+        } else if unconverged > 0 {
             println!(
-                "check: every constraint holds, but the plan is unconverged in {} stage(s) \
-                 (see the warnings): feasible, not optimal",
+                "check: every constraint holds, but the plan is unconverged in {unconverged} \
+                 stage(s) (see the warnings): feasible, not optimal"
+            );
+        } else if !written.warnings.is_empty() {
+            println!(
+                "check: every constraint holds (see the {} warning(s) above)",
                 written.warnings.len()
             );
+        } else {
+            println!("check: every constraint holds");
         }
     } else if !check.passed() {
         eprintln!("check: VIOLATED (run `shoal check` on the plan for the table)");

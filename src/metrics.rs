@@ -200,6 +200,8 @@ pub fn window_metrics(
 /// - `input_energy`: Σ_windows Σ_n Σ_k ‖U_n\[k\]‖², (m/s²)².
 /// - `explored_area_km2`: area of the union over windows of [`explored_strips`], km² (an area
 ///   swept twice counts once).
+/// - `revisited_area_km2`: Σ_windows (area of the window's [`explored_strips`]) − the union's,
+///   km²: ground swept again in a later window (0 for one window).
 /// - `mean_height`, `min_height`: z − Z(x, y) over every AUV waypoint k = 1..=K of every window,
 ///   metres; waypoints off the grid (or not finite) are skipped, and with none left both are 0.
 /// - `connected_fraction`: fraction of steps at which every AUV reaches the USV through usable
@@ -220,11 +222,14 @@ pub fn mission_metrics(
     times: &[[f64; 3]],
 ) -> Metrics {
     let mut swept = ExploredStrips::new(strip_height(p.swath_width));
+    let mut window_areas = 0.0;
     let (mut energy, mut max_rate) = (0.0, 0.0_f64);
     let (mut height_sum, mut heights, mut min_height) = (0.0, 0usize, f64::INFINITY);
     let (mut steps, mut connected, mut chain) = (0usize, 0usize, 0usize);
     for (w, &(stage, links)) in windows.iter().enumerate() {
-        swept.add_stage(stage, p.swath_width);
+        let own = explored_strips(stage, p.swath_width);
+        window_areas += own.area_km2();
+        swept.union_with(&own);
         for auv in &stage.auvs {
             energy += auv.input.iter().flatten().map(|u| u * u).sum::<f64>();
             for q in auv.position.iter().skip(1) {
@@ -248,12 +253,17 @@ pub fn mission_metrics(
             chain += usize::from(links.get(k).is_some_and(|l| g.connects(Some(l))));
         }
     }
-    swept.normalise();
     let ratio = |n: f64, d: usize| if d == 0 { 0.0 } else { n / d as f64 };
     let time = |i: usize| times.iter().map(|t| t[i]).sum();
     Metrics {
         input_energy: energy,
         explored_area_km2: swept.area_km2(),
+        // one window: exactly 0 (the union of one set is itself)
+        revisited_area_km2: if windows.len() > 1 {
+            (window_areas - swept.area_km2()).max(0.0)
+        } else {
+            0.0
+        },
         mean_height: ratio(height_sum, heights),
         min_height: if heights == 0 { 0.0 } else { min_height },
         connected_fraction: ratio(connected as f64, steps),

@@ -8,7 +8,7 @@ use crate::scenario::Scenario;
 use serde::{Deserialize, Serialize};
 
 /// Value of the `format` field of every plan this version writes.
-pub const FORMAT: &str = "shoal-plan/2";
+pub const FORMAT: &str = "shoal-plan/3";
 
 /// A plan as `shoal plan` writes it to `plan.json`: the resolved scenario, the floor, the
 /// models, the initial state and every window's stages, graph, links and metrics.
@@ -201,6 +201,11 @@ pub struct Metrics {
     pub input_energy: f64,
     /// Area of seafloor swept by the union of the AUVs' sensor swaths, km².
     pub explored_area_km2: f64,
+    /// Area swept again in a later window, km²: the sum of the windows' explored areas less
+    /// the mission's (an area swept in three windows counts twice). 0 for one window. Plans
+    /// written before this metric read it as 0.
+    #[serde(default)]
+    pub revisited_area_km2: f64,
     /// Mean height above the floor, z − Z(x, y), over the AUV waypoints k = 1..=K, metres.
     pub mean_height: f64,
     /// Minimum height above the floor over the AUV waypoints k = 1..=K, metres.

@@ -212,36 +212,6 @@ fn stage_record(
     }
 }
 
-/// A warning for every stage that did not converge: its plan is feasible, not the optimum.
-fn unconverged(windows: &[Window], s: &Scenario) -> Vec<String> {
-    let mut out = Vec::new();
-    for w in windows {
-        for (name, st) in [("step 1 (P2)", &w.step1), ("step 3 (P5)", &w.final_)] {
-            let why = match st.status.as_str() {
-                "converged" => continue,
-                "max_iterations" => format!(
-                    "stopped at scp.max_iterations = {} before its predicted decrease fell below \
-                     scp.tolerance = {}",
-                    s.scp.max_iterations, s.scp.tolerance
-                ),
-                "stalled" => format!(
-                    "stalled: its trust region shrank below scp.min_trust_region = {} m (or its \
-                     penalty reached its limit) before its predicted decrease fell below \
-                     scp.tolerance = {}",
-                    s.scp.min_trust_region, s.scp.tolerance
-                ),
-                other => format!("ended with status {other}"),
-            };
-            out.push(format!(
-                "window {}: {name} {why} after {} SCP iterations; the plan is feasible (it \
-                 passes its check) but not the optimum of its window",
-                w.index, st.iterations
-            ));
-        }
-    }
-    out
-}
-
 /// Algorithm 1: Step 1, Step 2, Step 3 with its line-of-sight loop, then the next window from
 /// the last state. `progress` hears of each iteration and step as it ends.
 fn run(
@@ -265,11 +235,14 @@ fn run(
     };
     let mut windows = Vec::with_capacity(s.windows);
     let mut heading = None;
+    // the USV's path so far, which OF1_8 measures from with usv.away_from = "track"
+    let mut track: Vec<[f64; 2]> = Vec::new();
     for w in 0..s.windows {
         check_start(s, floor, &keep_out, &start, w)?;
         // Step 1 (P2), line 9
         let clock = Instant::now();
-        let mut p2 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone());
+        let p2 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone());
+        let mut p2 = p2.with_track(&track);
         let mut trace = Vec::new();
         let out1 = step1::solve(&mut p2, heading, &mut |it| {
             trace.push(iteration_record(it));
@@ -298,8 +271,8 @@ fn run(
         // Step 3 (P5) and line of sight, lines 17–22
         let clock = Instant::now();
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
-        let mut p5 =
-            TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone()).with_links(links);
+        let p5 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone()).with_links(links);
+        let mut p5 = p5.with_track(&track);
         let mut trace = Vec::new();
         let out3 = step3::solve(&mut p5, &out1.iterate, &mut |it| {
             trace.push(iteration_record(it));
@@ -316,6 +289,7 @@ fn run(
             los_rounds: out3.los_rounds,
             out_of_band: out3.out_of_band.len(),
         });
+        track.extend_from_slice(&out3.outcome.iterate.usv_p);
         (start, heading) = next_window(&out3.outcome.iterate, heading); // line 7
         let report = LinkReport {
             links: out3.links.links,
@@ -348,7 +322,7 @@ fn run(
             metrics,
         });
     }
-    let warnings = unconverged(&windows, s);
+    let warnings = crate::advice::warnings(&windows, s, floor);
     Ok(Plan {
         warnings,
         format: FORMAT.into(),

@@ -92,6 +92,16 @@ pub fn summary_table(plan: &Plan) -> String {
             &plan.metrics
         ))
     );
+    if plan.windows.len() > 1 {
+        // the mission's explored area is a union: say what the windows swept twice
+        let m = &plan.metrics;
+        let _ = writeln!(
+            t,
+            "explored over the mission: {:.3} km² (each place once); {:.3} km² more was swept \
+             again in a later window",
+            m.explored_area_km2, m.revisited_area_km2
+        );
+    }
     t
 }
 

@@ -296,6 +296,23 @@ impl Checker<'_> {
             );
         }
         area("mission".into(), &self.plan.metrics, 0, nw);
+        // the revisited area: Σ window areas − the union, both measured here
+        let measured: Option<Vec<f64>> = (0..nw)
+            .map(|w| explored_km2(&finals[w..w + 1], swath))
+            .collect();
+        if let (Some(each), Some(union)) = (measured, explored_km2(&finals, swath)) {
+            let found = if nw > 1 {
+                (each.iter().sum::<f64>() - union).max(0.0)
+            } else {
+                0.0
+            };
+            let stored = self.plan.metrics.revisited_area_km2;
+            // relative to the mission's area: the two estimates' errors are of its size
+            let off = (stored - found).abs() / union.max(stored.abs()).max(1e-4);
+            f.record(-off, || {
+                format!("mission revisited area: stored {stored} km², measured across {found} km²")
+            });
+        }
         f.finish()
     }
 }

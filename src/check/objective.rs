@@ -8,7 +8,7 @@
 use super::run::{rel, Checker, Family};
 use super::{FamilyResult, ObjectiveCheck, OBJECTIVE_REL_TOL};
 use crate::plan::{ObjectiveTerms, Stage};
-use crate::scenario::{DepthObjective, UsvObjective};
+use crate::scenario::{AwayFrom, DepthObjective, UsvObjective};
 
 impl Checker<'_> {
     pub(super) fn objective(&self) -> (FamilyResult, Vec<ObjectiveCheck>) {
@@ -17,7 +17,7 @@ impl Checker<'_> {
         for (w, pre, st) in self.stages() {
             let stage = if pre.is_empty() { "final" } else { "step1" };
             let check_total = !pre.is_empty();
-            let mine = self.terms(st, check_total);
+            let mine = self.terms(w, st, check_total);
             let stored = st.objective;
             let mut terms = vec![
                 ("energy", stored.energy, mine.energy, 0.0),
@@ -44,8 +44,8 @@ impl Checker<'_> {
         (f.finish(), out)
     }
 
-    /// The terms of one stage; `total` is NaN unless `with_total`.
-    fn terms(&self, st: &Stage, with_total: bool) -> ObjectiveTerms {
+    /// The terms of one stage of window `w`; `total` is NaN unless `with_total`.
+    fn terms(&self, w: usize, st: &Stage, with_total: bool) -> ObjectiveTerms {
         let energy: f64 = st
             .auvs
             .iter()
@@ -65,7 +65,7 @@ impl Checker<'_> {
         let (first, last) = (st.usv.position.first(), st.usv.position.get(self.k));
         let usv = match (first, last) {
             (Some(p0), Some(pk)) => match self.s.usv.objective {
-                UsvObjective::Away => (pk[0] - p0[0]).powi(2) + (pk[1] - p0[1]).powi(2),
+                UsvObjective::Away => self.away(w, *p0, *pk),
                 UsvObjective::Destination => {
                     let d = self.s.usv.destination;
                     (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
@@ -88,6 +88,34 @@ impl Checker<'_> {
         terms
     }
 
+    /// OF1_8's squared distance of `pk` (P_USV\[K\] of window `w`) from what it is measured
+    /// from: the window's start `p0` with `usv.away_from = "window"`; with `"track"`, the
+    /// nearest point of the polyline through the final USV paths of windows 0..w, then `p0`.
+    fn away(&self, w: usize, p0: [f64; 2], pk: [f64; 2]) -> f64 {
+        let earlier = match self.s.usv.away_from {
+            AwayFrom::Track => &self.plan.windows[..w],
+            AwayFrom::Window => &[][..],
+        };
+        let track: Vec<[f64; 2]> = earlier
+            .iter()
+            .flat_map(|win| win.final_.usv.position.iter().copied())
+            .chain([p0])
+            .collect();
+        let mut least = f64::INFINITY;
+        for (i, a) in track.iter().enumerate() {
+            let b = track.get(i + 1).unwrap_or(a);
+            // the nearest point of segment a–b: a + t(b − a), t ∈ [0, 1]
+            let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
+            let len2 = ex * ex + ey * ey;
+            let t = match len2 > 0.0 {
+                true => (((pk[0] - a[0]) * ex + (pk[1] - a[1]) * ey) / len2).clamp(0.0, 1.0),
+                false => 0.0,
+            };
+            least = least.min((pk[0] - a[0] - t * ex).powi(2) + (pk[1] - a[1] - t * ey).powi(2));
+        }
+        least
+    }
+
     /// The weighted terms of P2's total: w1·energy, w2·(height or depth), ∓w8·usv.
     fn weighted(&self, t: &ObjectiveTerms) -> [f64; 3] {
         let wt = &self.s.weights;
@@ -99,7 +127,8 @@ impl Checker<'_> {
             UsvObjective::Away => -wt.w8 * t.usv,
             UsvObjective::Destination => wt.w8_2 * t.usv,
         };
-        [wt.w1 * t.energy, wt.w2 * of1_2, usv]
+        let per_auv = wt.per_auv(self.s.team.auvs); // weights.scaling
+        [wt.w1 * per_auv * t.energy, wt.w2 * per_auv * of1_2, usv]
     }
 
     /// The scale the total is compared against: the sum of the weighted terms' magnitudes.

@@ -159,6 +159,37 @@ pub struct Usv {
     /// Direction (rad, from +x towards +y) of the first guess of the USV path, about which the
     /// concave OF1_8 is first linearised (its gradient at "not moved" is zero).
     pub initial_heading: f64,
+    /// What OF1_8 ("away") measures the USV's distance from: the track it has travelled since
+    /// the mission's start (ours, default) or the window's start point (the paper's literal form).
+    pub away_from: AwayFrom,
+}
+
+/// What OF1_8 measures "away" from. Both are the paper's −‖P_USV\[K\] − P_USV\[0\]‖² in the
+/// first window; they differ in the later ones.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AwayFrom {
+    /// −min over the USV's track (every earlier window's path, and this window's start) of
+    /// ‖P_USV\[K\] − q‖²: each window is rewarded for ground farther from any the team has been
+    /// over, so a long mission does not wander back over the water it has seen.
+    Track,
+    /// −‖P_USV\[K\] − P_USV\[0\]‖² with P_USV\[0\] the window's own start (the paper): each window
+    /// forgets the earlier ones and may head back.
+    Window,
+}
+
+/// How w1, w2 and w5 weigh their sums over the team (ours; the paper gives no weights).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WeightScaling {
+    /// w1, w2 and w5 weigh OF1_1, OF1_2 and OF1_5 divided by N, each AUV's share (default):
+    /// the trade-off between an AUV's input energy, its height and the USV's OF1_8 is the same
+    /// at every N. OF1_5 sums over the pairs that are not linked, so an AUV's share of it grows
+    /// with the number of AUVs it is not linked to: a bigger team spreads wider.
+    PerAuv,
+    /// The paper's sums: the team's terms grow with N (energy and height like N, spread like
+    /// N²) while OF1_8 does not, so weights that suit 5 AUVs stop a team of 20.
+    Sum,
 }
 
 /// The form of OF1_2 (Section III-A: "enforces the AUVs to navigate close to the sea floor").
@@ -198,6 +229,19 @@ pub struct Weights {
     pub w8: f64,
     /// w8_2 · OF1_8_2, USV squared distance to the destination, per m².
     pub w8_2: f64,
+    /// Whether w1, w2 and w5 weigh the team's sums per AUV (default) or as the paper's sums.
+    pub scaling: WeightScaling,
+}
+
+impl Weights {
+    /// The factor of the team's sums OF1_1, OF1_2 and OF1_5 over `auvs` AUVs in the objective:
+    /// 1/N for "per_auv" (1 for an empty team), 1 for "sum".
+    pub fn per_auv(&self, auvs: usize) -> f64 {
+        match self.scaling {
+            WeightScaling::PerAuv => 1.0 / auvs.max(1) as f64,
+            WeightScaling::Sum => 1.0,
+        }
+    }
 }
 
 /// Default: no file, the default synthetic floor.
@@ -337,6 +381,7 @@ impl Default for Usv {
             objective: UsvObjective::Away,
             destination: [3000.0, 0.0],
             initial_heading: 0.0,
+            away_from: AwayFrom::Track,
         }
     }
 }
@@ -344,18 +389,21 @@ impl Default for Usv {
 impl Default for Weights {
     fn default() -> Self {
         // The paper gives no weights. These are in physical units and chosen so that every term
-        // of P2 visibly matters (docs/method.md, "Weights"; the full sweep is still to do).
+        // of P2 visibly matters (docs/method.md, "Weights"). They weigh the team's terms per
+        // AUV (`scaling = "per_auv"`) and were tuned as the paper's sums for 5 AUVs: w1 = 5 × 10³,
+        // w2 = 5 and w5 = 5 × 10⁻⁴ per AUV are 10³, 1 and 10⁻⁴ on the sums at N = 5.
         Weights {
-            w1: 1.0e3,
-            w2: 1.0,
+            w1: 5.0e3,
+            w2: 5.0,
             of1_2: DepthObjective::Height,
             w3: 1.0e3, // "heavily penalised" band slacks: 1 m off band weighs like 1 (m/s²)² of input
             w4: 1.0e3,
-            w5: 1.0e-4,
+            w5: 5.0e-4,
             w6: 0.0,
             w7: 0.0,
             w8: 1.0e-3,
             w8_2: 1.0e-3,
+            scaling: WeightScaling::PerAuv,
         }
     }
 }

@@ -5,7 +5,9 @@
 //! to a TOML document. Used to list the keys allowed at each level, to name the type a key
 //! expects, and to generate the template, so that no key or default value is written twice.
 
-use super::{DepthObjective, Discretisation, Initial, Scenario, UsvObjective};
+use super::{
+    AwayFrom, DepthObjective, Discretisation, Initial, Scenario, UsvObjective, WeightScaling,
+};
 use crate::seafloor::Values;
 use toml_edit::{DocumentMut, Item, TableLike, Value};
 
@@ -233,7 +235,9 @@ pub(crate) fn enum_values(key: &str) -> Option<Vec<String>> {
     match key {
         "auv.discretisation" => Some(names(&[Discretisation::Zoh, Discretisation::Euler])),
         "usv.objective" => Some(names(&[UsvObjective::Away, UsvObjective::Destination])),
+        "usv.away_from" => Some(names(&[AwayFrom::Track, AwayFrom::Window])),
         "weights.of1_2" => Some(names(&[DepthObjective::Height, DepthObjective::Depth])),
+        "weights.scaling" => Some(names(&[WeightScaling::PerAuv, WeightScaling::Sum])),
         "seafloor.values" => Some(names(&[Values::Elevation, Values::Depth])),
         _ => None,
     }

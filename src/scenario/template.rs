@@ -113,12 +113,19 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              concave OF1_8 is first linearised (its gradient is zero where the USV has not \
              moved)."
         }
+        "usv.away_from" => {
+            "What OF1_8 measures \"away\" from. \"track\" (ours, default): the nearest point              of the path the USV has travelled since the mission's start, so each window              heads for new ground; \"window\": the window's own start (the paper), so a long              mission may wander back. The same in the first window."
+        }
         "weights" => {
             "Weights w1..w8 of OF1 (problem P1) and w8_2 of OF1_8_2. All ≥ 0. The paper gives \
              no values; ours are in physical units."
         }
-        "weights.w1" => "w1 · OF1_1: input energy Σ‖𝒰[k]‖², per (m/s²)².",
-        "weights.w2" => "w2 · OF1_2: keeps the AUVs deep, near the floor, per metre (see of1_2).",
+        "weights.w1" => {
+            "w1 · OF1_1: input energy Σ‖𝒰[k]‖², per (m/s²)² (per AUV: see scaling)."
+        }
+        "weights.w2" => {
+            "w2 · OF1_2: keeps the AUVs deep, near the floor, per metre (per AUV: see scaling              and of1_2)."
+        }
         "weights.of1_2" => {
             "What OF1_2 sums over AUVs and steps: \"height\" = z − Z(x, y), the height above the \
              floor (ours, default: stays near the floor without pulling AUVs sideways into \
@@ -132,7 +139,9 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "w4 · OF1_4 (Step 3): A2A link length outside its band [d_s − d_t, d_s], per metre \
              (the penalty on C5_3's slack; ours: 10³, heavily penalised)."
         }
-        "weights.w5" => "w5 · OF1_5 (Step 3): spread of non-adjacent AUVs (rewarded), per m².",
+        "weights.w5" => {
+            "w5 · OF1_5 (Step 3): spread of non-adjacent AUVs (rewarded), per m² (per AUV: see scaling)."
+        }
         "weights.w6" => "w6 · OF1_6: number of A2A edges (fixed by Step 2, so a constant).",
         "weights.w7" => "w7 · OF1_7: number of A2U edges (fixed by Step 2, so a constant).",
         "weights.w8" => {
@@ -142,6 +151,9 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "weights.w8_2" => {
             "w8_2 · OF1_8_2: squared distance of the USV to usv.destination, per m². Used when \
              usv.objective = \"destination\"."
+        }
+        "weights.scaling" => {
+            "\"mean\" (ours, default): w1 and w2 weigh OF1_1 and OF1_2 averaged over the N              AUVs, w5 weighs OF1_5 averaged over the (N − 1)(N − 2)/2 pairs a path graph leaves              non-adjacent, so the team's terms balance the USV's OF1_8 alike at every N;              \"sum\": the paper's sums, under which a bigger team moves less."
         }
         "seafloor" => {
             "The seafloor Z(x, y), whose obstacles p_Ω^3D enter C1_12 / C1_13 (C2_2 in Step 1): \

@@ -148,15 +148,20 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
 #[cfg(test)]
 mod tests {
     use crate::mission::{initial_state, scenario_floor};
-    use crate::scenario::Scenario;
+    use crate::scenario::{Scenario, WeightScaling};
     use crate::team::TeamProblem;
     use crate::trajectory::Start;
     use crate::vehicle::{AuvModel, UsvModel};
 
     /// How far the USV goes in the first reference of the default scenario with `n` AUVs.
-    fn guessed_distance(n: usize) -> f64 {
+    fn guessed_distance(n: usize, scaling: WeightScaling) -> f64 {
         let mut s = Scenario::default();
         s.team.auvs = n;
+        if scaling == WeightScaling::Sum {
+            // the weights of before issue 14, tuned as sums for 5 AUVs
+            (s.weights.w1, s.weights.w2, s.weights.w5) = (1e3, 1.0, 1e-4);
+        }
+        s.weights.scaling = scaling;
         guessed_run(&s).0
     }
 
@@ -208,12 +213,15 @@ mod tests {
         assert!(guess > 500.0, "{guess} {straight}");
     }
 
-    /// The paper's 5 AUVs go at full speed (1.5 m/s for 2000 s: 3000 m, as Step 1 then plans);
-    /// 20 AUVs, whose energy outweighs OF1_8, start from a formation at a fraction of it (Step 1
-    /// keeps their USV within about 300 m).
+    /// The paper's 5 AUVs go at full speed (1.5 m/s for 2000 s: 3000 m, as Step 1 then plans),
+    /// and so do 20 with the team's terms weighed per AUV (issue 14). With the paper's sums
+    /// (`weights.scaling = "sum"`) the energy of 20 AUVs outweighs OF1_8 and their formation
+    /// starts at a fraction of it (Step 1 then kept their USV within about 300 m).
     #[test]
     fn the_guess_speed_follows_what_the_team_can_afford() {
-        assert!((guessed_distance(5) - 3000.0).abs() < 1.0);
-        assert!(guessed_distance(20) < 400.0);
+        assert!((guessed_distance(5, WeightScaling::PerAuv) - 3000.0).abs() < 1.0);
+        assert!((guessed_distance(20, WeightScaling::PerAuv) - 3000.0).abs() < 1.0);
+        assert!((guessed_distance(5, WeightScaling::Sum) - 3000.0).abs() < 1.0);
+        assert!(guessed_distance(20, WeightScaling::Sum) < 400.0);
     }
 }

@@ -50,7 +50,7 @@ pub use objective::Terms;
 
 use crate::conic::{ConicSolver, Pattern, SolveReport};
 use crate::error::{PlanError, Step};
-use crate::scenario::Scenario;
+use crate::scenario::{AwayFrom, Scenario};
 use crate::scp::{self, Evaluation, Iteration, ScpOutcome, ScpProblem};
 use crate::seafloor::Seafloor;
 use crate::trajectory::{Start, Trajectory};
@@ -78,6 +78,9 @@ pub struct TeamProblem<'a> {
     heading: HeadingRule,
     /// P5's planned links and their bands (None for P2).
     links: Option<LinkSet>,
+    /// The points OF1_8 ("away") measures from: the USV's earlier path, then this window's
+    /// start (only the start unless `with_track`).
+    track: Vec<[f64; 2]>,
     solver: Option<ConicSolver>,
 }
 
@@ -104,12 +107,28 @@ impl<'a> TeamProblem<'a> {
             keep_out,
             auv,
             usv,
+            track: vec![start.usv],
             start,
             layout,
             heading: HeadingRule::of(scenario),
             links: None,
             solver: None,
         }
+    }
+
+    /// The same window with the USV's path before it, `earlier`: with `usv.away_from =
+    /// "track"` OF1_8 then rewards the distance of P_USV\[K\] from the nearest point of that
+    /// path or of this window's start; with `"window"` the path is ignored (the paper).
+    pub fn with_track(mut self, earlier: &[[f64; 2]]) -> TeamProblem<'a> {
+        if self.scenario.usv.away_from == AwayFrom::Track {
+            self.track = earlier.iter().copied().chain([self.start.usv]).collect();
+        }
+        self
+    }
+
+    /// The points OF1_8 measures "away" from (see `with_track`).
+    pub fn track(&self) -> &[[f64; 2]] {
+        &self.track
     }
 
     /// The same window with P5's planned links (Step 3): adds the band slacks to the layout.

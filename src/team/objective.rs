@@ -5,14 +5,21 @@
 //!
 //! Departures from the paper, each for a reason:
 //! - OF1_8 does not depend on k, so it enters once (w8 absorbs the paper's factor K).
+//! - OF1_8 measures the USV's distance from the nearest point of the path it has travelled in
+//!   earlier windows (or from this window's start): `usv.away_from = "track"`, the default.
+//!   In the first window that is the paper's ‖P_USV\[K\] − P_USV\[0\]‖²; in later ones the paper's
+//!   form (`"window"`) lets each window head back over water already seen.
 //! - OF1_1 sums the AUV inputs only: the USV's input is a velocity, not a per-mass force.
+//! - By default (`weights.scaling = "per_auv"`) w1, w2 and w5 weigh OF1_1, OF1_2 and OF1_5
+//!   divided by N: with the paper's sums the team's terms grow with N and OF1_8 does not, and
+//!   a team of 20 barely moves.
 //! - OF1_2 is the height above the floor, Σ (z − Z(x, y)), by default (`weights.of1_2 =
 //!   "height"`); the paper's Σ z (`"depth"`) rewards depth, not hugging the floor. The height
 //!   term and the concave OF1_8 are linearised about the reference in the model.
 
 use super::model::Assembly;
 use super::{spread, TeamProblem};
-use crate::linearise::usv_away;
+use crate::linearise::usv_away_track;
 use crate::scenario::{DepthObjective, UsvObjective};
 use crate::trajectory::Trajectory;
 
@@ -65,7 +72,7 @@ pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
     let pk = t.usv_p[p.layout.k];
     let s = p.scenario;
     let usv = match s.usv.objective {
-        UsvObjective::Away => -usv_away([pk[0] - p.start.usv[0], pk[1] - p.start.usv[1]]).0,
+        UsvObjective::Away => -usv_away_track(pk, &p.track).0,
         UsvObjective::Destination => {
             let d = s.usv.destination;
             (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
@@ -94,11 +101,12 @@ pub(super) fn weighted(p: &TeamProblem, t: &Terms) -> [f64; 6] {
         DepthObjective::Height => t.height,
         DepthObjective::Depth => t.depth,
     };
+    let per_auv = w.per_auv(p.layout.n); // weights.scaling
     [
-        w.w1 * t.energy,
-        w.w2 * of1_2,
+        w.w1 * per_auv * t.energy,
+        w.w2 * per_auv * of1_2,
         usv,
-        -w.w5 * t.spread,
+        -w.w5 * per_auv * t.spread,
         w.w3 * t.band_a2u,
         w.w4 * t.band_a2a,
     ]
@@ -111,38 +119,40 @@ pub(super) fn model(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) {
     let (kk, nn) = (l.k, l.n);
     let s = p.scenario;
     let w = &s.weights;
+    // weights.scaling: each AUV's share of OF1_1 and OF1_2
+    let (w1, w2) = (w.w1 * w.per_auv(nn), w.w2 * w.per_auv(nn));
     for n in 0..nn {
         for k in 0..kk {
             for i in 0..3 {
-                m.p.push(l.auv_u(n, k) + i, l.auv_u(n, k) + i, 2.0 * w.w1); // OF1_1
+                m.p.push(l.auv_u(n, k) + i, l.auv_u(n, k) + i, 2.0 * w1); // OF1_1
             }
         }
         for k in 1..=kk {
             let col = l.auv_p(n, k);
-            m.q[col + 2] = w.w2; // OF1_2: Σ z …
+            m.q[col + 2] = w2; // OF1_2: Σ z …
             if s.weights.of1_2 == DepthObjective::Height {
                 // … − Z(x, y), linearised about the reference: height above the floor
                 let x = r.auv_p[n][k];
                 let (zr, grad) = p.floor_linearisation(x);
-                m.q[col] = -w.w2 * grad[0];
-                m.q[col + 1] = -w.w2 * grad[1];
-                m.constant -= w.w2 * (zr - grad[0] * x[0] - grad[1] * x[1]);
+                m.q[col] = -w2 * grad[0];
+                m.q[col + 1] = -w2 * grad[1];
+                m.constant -= w2 * (zr - grad[0] * x[0] - grad[1] * x[1]);
             }
         }
     }
     let pk = l.usv_p(kk);
-    let p0 = p.start.usv;
     match s.usv.objective {
         UsvObjective::Away => {
-            // −w8·‖P[K] − P[0]‖², concave: linearised about the reference (OF1_8)
-            let d_ref = [r.usv_p[kk][0] - p0[0], r.usv_p[kk][1] - p0[1]];
-            let (value, grad) = usv_away(d_ref);
+            // −w8·‖P[K] − c‖², c the nearest point of the track (P[0] alone in the first
+            // window or with away_from = "window"), concave: linearised about the reference
+            // (OF1_8)
+            let p_ref = r.usv_p[kk];
+            let (value, grad) = usv_away_track(p_ref, &p.track);
             for i in 0..2 {
                 m.p.push(pk + i, pk + i, 0.0);
                 m.q[pk + i] = w.w8 * grad[i];
             }
-            m.constant += w.w8 * (value - grad[0] * d_ref[0] - grad[1] * d_ref[1])
-                - w.w8 * (grad[0] * p0[0] + grad[1] * p0[1]);
+            m.constant += w.w8 * (value - grad[0] * p_ref[0] - grad[1] * p_ref[1]);
         }
         UsvObjective::Destination => {
             // w8_2·‖P[K] − P∞‖² (OF1_8_2), convex

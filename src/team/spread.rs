@@ -29,7 +29,8 @@ pub fn value(set: &LinkSet, t: &Trajectory) -> f64 {
 pub(super) fn objective(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) {
     let Some(set) = &p.links else { return };
     let l = p.layout;
-    let w5 = p.scenario.weights.w5;
+    let w = &p.scenario.weights;
+    let w5 = w.w5 * w.per_auv(l.n); // weights.scaling: each AUV's share
     for k in 1..=l.k {
         for i in 0..l.n {
             for j in i + 1..l.n {

@@ -152,7 +152,9 @@ fn objective(s: &Scenario, floor: &Seafloor, usv: &UsvPath, auvs: &[AuvPath]) ->
         depth,
         height,
         usv: usv_term,
-        total: s.weights.w1 * energy + s.weights.w2 * of1_2 + w_usv * usv_term,
+        // the team's terms per AUV (weights.scaling)
+        total: s.weights.per_auv(s.team.auvs) * (s.weights.w1 * energy + s.weights.w2 * of1_2)
+            + w_usv * usv_term,
         ..ObjectiveTerms::default()
     }
 }
@@ -964,7 +966,8 @@ fn regression_recorded_fractions_and_area_are_verified() {
     let r = check_plan(&good, &floor);
     assert!(r.passed(), "{}", r.table());
     let area = r.family("recorded explored area").unwrap();
-    assert!(area.checked == 3 && area.worst_margin > -0.01, "{area:?}");
+    // two windows and the mission, and the mission's revisited area (issue 14)
+    assert!(area.checked == 4 && area.worst_margin > -0.01, "{area:?}");
     for tamper in [
         (|p: &mut Plan| p.metrics.connected_fraction = 0.5) as fn(&mut Plan),
         |p| p.windows[1].metrics.chain_fraction -= 0.05,
@@ -976,6 +979,7 @@ fn regression_recorded_fractions_and_area_are_verified() {
     for tamper in [
         (|p: &mut Plan| p.metrics.explored_area_km2 *= 1.1) as fn(&mut Plan),
         |p| p.windows[0].metrics.explored_area_km2 = 0.0,
+        |p| p.metrics.revisited_area_km2 += 0.1 * p.metrics.explored_area_km2,
     ] {
         let mut p = good.clone();
         tamper(&mut p);

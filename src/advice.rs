@@ -1,0 +1,165 @@
+//! What a plan tells its user beyond PASS: the warnings of `plan.json` and stderr. A plan can
+//! pass every check and still be a poor mission; each warning says what happened, why, and
+//! which setting to change.
+//!
+//! - A stage that did not converge: feasible, not the optimum of its window.
+//! - A team that barely moves (issue 14): with OF1_8 ("away") the USV ends a window less than
+//!   [`BARELY_MOVES`] of the way a formation could go, i.e. the team's terms outweigh the USV's.
+//! - The grid's edge: a vehicle comes within one step's travel of the edge of the seafloor
+//!   grid, which the plan cannot cross; a long mission then turns along it or stops.
+
+use crate::plan::Window;
+use crate::scenario::{Scenario, UsvObjective};
+use crate::seafloor::Seafloor;
+
+/// Share of the distance a formation could cover in a window (K·δ at the slower of the USV's
+/// and the AUVs' speed limits) below which the team "barely moves".
+pub const BARELY_MOVES: f64 = 0.1;
+
+/// Every warning of a plan's windows, in window order.
+pub fn warnings(windows: &[Window], s: &Scenario, floor: &Seafloor) -> Vec<String> {
+    let mut out = unconverged(windows, s);
+    for w in windows {
+        let edge = grid_edge(w, s, floor);
+        out.extend(barely_moves(w, s, edge.is_some()));
+        out.extend(edge);
+    }
+    out
+}
+
+/// A warning for every stage that did not converge: its plan is feasible, not the optimum.
+fn unconverged(windows: &[Window], s: &Scenario) -> Vec<String> {
+    let mut out = Vec::new();
+    for w in windows {
+        for (name, st) in [("step 1 (P2)", &w.step1), ("step 3 (P5)", &w.final_)] {
+            let why = match st.status.as_str() {
+                "converged" => continue,
+                "max_iterations" => format!(
+                    "stopped at scp.max_iterations = {} before its predicted decrease fell below \
+                     scp.tolerance = {}",
+                    s.scp.max_iterations, s.scp.tolerance
+                ),
+                "stalled" => format!(
+                    "stalled: its trust region shrank below scp.min_trust_region = {} m (or its \
+                     penalty reached its limit) before its predicted decrease fell below \
+                     scp.tolerance = {}",
+                    s.scp.min_trust_region, s.scp.tolerance
+                ),
+                other => format!("ended with status {other}"),
+            };
+            out.push(format!(
+                "window {}: {name} {why} after {} SCP iterations; the plan is feasible (it \
+                 passes its check) but not the optimum of its window",
+                w.index, st.iterations
+            ));
+        }
+    }
+    out
+}
+
+/// How far a formation could go in one window, metres: K·δ at the slower of the USV's limit
+/// and the AUVs' (the team moves together).
+fn reach(s: &Scenario) -> f64 {
+    s.horizon.steps as f64 * s.horizon.dt * s.usv.max_speed.min(s.auv.max_speed)
+}
+
+/// The warning for a window whose USV ends less than [`BARELY_MOVES`] of [`reach`] from its
+/// start although its objective asks it to move: away from its track, or towards a destination
+/// it has not reached. `at_edge`: the grid's edge explains it (its own warning follows).
+fn barely_moves(w: &Window, s: &Scenario, at_edge: bool) -> Option<String> {
+    let usv = &w.final_.usv.position;
+    let (first, last) = (usv.first()?, usv.last()?);
+    let moved = (last[0] - first[0]).hypot(last[1] - first[1]);
+    let reach = reach(s);
+    let weights = &s.weights;
+    let (wanted, term) = match s.usv.objective {
+        UsvObjective::Away => (
+            reach,
+            format!("OF1_8 (move away, weights.w8 = {})", weights.w8),
+        ),
+        UsvObjective::Destination => {
+            let d = s.usv.destination;
+            let to_go = (d[0] - first[0]).hypot(d[1] - first[1]);
+            (
+                reach.min(to_go),
+                format!("OF1_8_2 (destination, weights.w8_2 = {})", weights.w8_2),
+            )
+        }
+    };
+    if moved >= BARELY_MOVES * wanted || !moved.is_finite() || at_edge {
+        return None;
+    }
+    if w.step1.status != "converged" || w.final_.status != "converged" {
+        // the weights may not be to blame: the SCP stopped short of the window's optimum
+        return Some(format!(
+            "window {}: the team barely moves: the USV ends {moved:.0} m from where the window \
+             started, {:.0} % of the {wanted:.0} m it could go, and the window's SCP did not \
+             converge (see its warning): raise scp.max_iterations, or see the weights w1, w2 \
+             and {term} if it still does not move",
+            w.index,
+            100.0 * moved / wanted,
+        ));
+    }
+    let scaling = match s.weights.scaling {
+        crate::scenario::WeightScaling::Sum => {
+            "; with weights.scaling = \"sum\" the team's terms grow with N while the USV's \
+             does not (\"per_auv\" weighs them per AUV)"
+        }
+        crate::scenario::WeightScaling::PerAuv => "",
+    };
+    Some(format!(
+        "window {}: the team barely moves: the USV ends {moved:.0} m from where the window \
+         started, {:.0} % of the {wanted:.0} m it could go; the team's input energy \
+         (weights.w1 = {}) and height above the floor (weights.w2 = {}) outweigh {term}: raise \
+         the latter or lower the former{scaling}",
+        w.index,
+        100.0 * moved / wanted,
+        weights.w1,
+        weights.w2,
+    ))
+}
+
+/// The warning for a window in which a vehicle comes within one step's travel (δ at its speed
+/// limit) of the grid's edge, which no plan can cross: the nearest such waypoint and the edge.
+fn grid_edge(w: &Window, s: &Scenario, floor: &Seafloor) -> Option<String> {
+    let e = floor.extent();
+    let step = s.horizon.dt * s.usv.max_speed.max(s.auv.max_speed);
+    let usv = w
+        .final_
+        .usv
+        .position
+        .iter()
+        .map(|p| ("the USV".to_string(), [p[0], p[1]]));
+    let auvs = w.final_.auvs.iter().enumerate().flat_map(|(n, a)| {
+        a.position
+            .iter()
+            .map(move |p| (format!("AUV {n}"), [p[0], p[1]]))
+    });
+    let mut nearest: Option<(f64, String, &str, f64)> = None;
+    for (who, p) in usv.chain(auvs) {
+        for (gap, side, at) in [
+            (p[0] - e.x_min, "west", e.x_min),
+            (e.x_max - p[0], "east", e.x_max),
+            (p[1] - e.y_min, "south", e.y_min),
+            (e.y_max - p[1], "north", e.y_max),
+        ] {
+            if gap < step && nearest.as_ref().map_or(true, |n| gap < n.0) {
+                nearest = Some((gap, who.clone(), side, at));
+            }
+        }
+    }
+    let (gap, who, side, at) = nearest?;
+    let axis = if side == "west" || side == "east" {
+        "x"
+    } else {
+        "y"
+    };
+    Some(format!(
+        "window {}: the grid's edge stops the team: {who} comes within {gap:.0} m of the \
+         grid's {side} edge ({axis} = {at:.0} m), closer than one step's travel ({step:.0} m), \
+         and no plan leaves the grid; the mission turns along the edge or stops. Load a larger \
+         grid (seafloor.file, seafloor.synthetic.size) or give the USV a destination inside \
+         it (usv.objective = \"destination\")",
+        w.index
+    ))
+}

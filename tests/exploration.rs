@@ -1,0 +1,103 @@
+//! Issue 14: bigger teams explore more, long missions explore new ground, and a plan that
+//! does neither says why. Every plan here also passes `shoal check`.
+
+use shoal::check::check_plan;
+use shoal::linearise::nearest_on_track;
+use shoal::mission::scenario_floor;
+use shoal::plan::Plan;
+use shoal::scenario::{AwayFrom, Scenario, WeightScaling};
+use shoal::seafloor::Seafloor;
+
+fn plan(s: &Scenario) -> (Plan, Seafloor) {
+    let (floor, _) = scenario_floor(s, std::path::Path::new("")).unwrap();
+    let p = shoal::Planner::new(s, &floor).run().unwrap();
+    let r = check_plan(&p, &floor);
+    assert!(r.passed(), "{}", r.table());
+    (p, floor)
+}
+
+/// Start-to-end distance of the USV in window `w`, metres.
+fn usv_moved(p: &Plan, w: usize) -> f64 {
+    let u = &p.windows[w].final_.usv.position;
+    let (a, b) = (u[0], u[u.len() - 1]);
+    (b[0] - a[0]).hypot(b[1] - a[1])
+}
+
+fn team(n: usize) -> Scenario {
+    let mut s = Scenario::default();
+    s.team.auvs = n;
+    s
+}
+
+/// Regression (issue 14): with the paper's sums as weights, the team's input energy grew with
+/// N and OF1_8 did not, so the weights that suit 5 AUVs stopped a bigger team (seed 1: the USV
+/// moved 2992 m with 5 AUVs, 730 m with 10; explored 0.685 and 0.292 km²). Weighed per AUV,
+/// 10 AUVs go as far as 5 and sweep more floor.
+#[test]
+fn regression_a_team_of_ten_moves_as_far_as_five_and_explores_more() {
+    let (five, _) = plan(&team(5));
+    let (ten, _) = plan(&team(10));
+    let reach = 20.0 * 100.0 * 1.5; // K·δ at the USV's limit
+    assert!(
+        usv_moved(&five, 0) > 0.95 * reach,
+        "{}",
+        usv_moved(&five, 0)
+    );
+    assert!(usv_moved(&ten, 0) > 0.95 * reach, "{}", usv_moved(&ten, 0));
+    let (a5, a10) = (
+        five.metrics.explored_area_km2,
+        ten.metrics.explored_area_km2,
+    );
+    assert!(a10 > 1.3 * a5, "N = 5: {a5} km², N = 10: {a10} km²");
+    assert!(five.warnings.is_empty() && ten.warnings.is_empty());
+}
+
+/// A team whose energy outweighs OF1_8 barely moves, and the plan says so, naming the weights
+/// to change (here the paper's sums with w1 = 10⁶ per (m/s²)²).
+#[test]
+fn a_team_that_barely_moves_is_told_which_weight_to_change() {
+    let mut s = team(3);
+    s.horizon.steps = 10;
+    s.weights.scaling = WeightScaling::Sum;
+    s.weights.w1 = 1e6;
+    let (p, _) = plan(&s);
+    assert!(usv_moved(&p, 0) < 0.1 * 10.0 * 100.0 * 1.5);
+    let w = p.warnings.join("\n");
+    assert!(
+        w.contains("window 0: the team barely moves")
+            && w.contains("weights.w1 = 1000000")
+            && w.contains("weights.w8 = 0.001")
+            && w.contains("weights.scaling = \"sum\""),
+        "{w}"
+    );
+}
+
+/// Regression (issue 14): OF1_8 measured from each window's own start let a long mission
+/// head back over water it had seen once the grid's edge turned it, without a warning. Measured
+/// from the USV's track (the default), the third window of a mission on an 8 km grid, turned
+/// by the east edge in the second, ends more than 2 km from anywhere the USV has been, sweeps
+/// almost nothing twice, and the plan names the edge.
+#[test]
+fn regression_a_long_mission_heads_for_new_ground_and_names_the_grid_edge() {
+    let mut s = team(3);
+    s.windows = 3;
+    s.seafloor.synthetic.size = [8000.0, 8000.0];
+    assert_eq!(s.usv.away_from, AwayFrom::Track);
+    let (p, _) = plan(&s);
+    let earlier: Vec<[f64; 2]> = p.windows[..2]
+        .iter()
+        .flat_map(|w| w.final_.usv.position.iter().copied())
+        .collect();
+    let end = *p.windows[2].final_.usv.position.last().unwrap();
+    let c = nearest_on_track(end, &earlier);
+    let new_ground = (end[0] - c[0]).hypot(end[1] - c[1]);
+    assert!(new_ground > 2000.0, "{new_ground} m from the earlier track");
+    let m = &p.metrics;
+    assert!(m.revisited_area_km2 < 0.05 * m.explored_area_km2, "{m:?}");
+    let w = p.warnings.join("\n");
+    assert!(
+        w.contains("window 1: the grid's edge stops the team")
+            && w.contains("east edge (x = 4000 m)"),
+        "{w}"
+    );
+}
