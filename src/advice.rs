@@ -89,7 +89,7 @@ fn barely_moves(w: &Window, s: &Scenario, at_edge: bool) -> Option<String> {
     if moved >= BARELY_MOVES * wanted || !moved.is_finite() || at_edge {
         return None;
     }
-    if w.step1.status != "converged" || w.final_.status != "converged" {
+    if !w.converged() {
         // the weights may not be to blame: the SCP stopped short of the window's optimum
         return Some(format!(
             "window {}: the team barely moves: the USV ends {moved:.0} m from where the window \
@@ -124,36 +124,25 @@ fn barely_moves(w: &Window, s: &Scenario, at_edge: bool) -> Option<String> {
 fn grid_edge(w: &Window, s: &Scenario, floor: &Seafloor) -> Option<String> {
     let e = floor.extent();
     let step = s.horizon.dt * s.usv.max_speed.max(s.auv.max_speed);
-    let usv = w
-        .final_
-        .usv
-        .position
-        .iter()
-        .map(|p| ("the USV".to_string(), [p[0], p[1]]));
-    let auvs = w.final_.auvs.iter().enumerate().flat_map(|(n, a)| {
-        a.position
-            .iter()
-            .map(move |p| (format!("AUV {n}"), [p[0], p[1]]))
-    });
-    let mut nearest: Option<(f64, String, &str, f64)> = None;
+    // every horizontal waypoint with its vehicle: None the USV, Some(n) AUV n
+    let usv = w.final_.usv.position.iter().map(|p| (None, *p));
+    let auvs = (w.final_.auvs.iter().enumerate())
+        .flat_map(|(n, a)| a.position.iter().map(move |p| (Some(n), [p[0], p[1]])));
+    let mut nearest: Option<(f64, Option<usize>, &str, &str, f64)> = None;
     for (who, p) in usv.chain(auvs) {
-        for (gap, side, at) in [
-            (p[0] - e.x_min, "west", e.x_min),
-            (e.x_max - p[0], "east", e.x_max),
-            (p[1] - e.y_min, "south", e.y_min),
-            (e.y_max - p[1], "north", e.y_max),
+        for (gap, side, axis, at) in [
+            (p[0] - e.x_min, "west", "x", e.x_min),
+            (e.x_max - p[0], "east", "x", e.x_max),
+            (p[1] - e.y_min, "south", "y", e.y_min),
+            (e.y_max - p[1], "north", "y", e.y_max),
         ] {
-            if gap < step && nearest.as_ref().map_or(true, |n| gap < n.0) {
-                nearest = Some((gap, who.clone(), side, at));
+            if gap < step && nearest.map_or(true, |n| gap < n.0) {
+                nearest = Some((gap, who, side, axis, at));
             }
         }
     }
-    let (gap, who, side, at) = nearest?;
-    let axis = if side == "west" || side == "east" {
-        "x"
-    } else {
-        "y"
-    };
+    let (gap, who, side, axis, at) = nearest?;
+    let who = who.map_or("the USV".to_string(), |n| format!("AUV {n}"));
     Some(format!(
         "window {}: the grid's edge stops the team: {who} comes within {gap:.0} m of the \
          grid's {side} edge ({axis} = {at:.0} m), closer than one step's travel ({step:.0} m), \

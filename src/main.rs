@@ -260,12 +260,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 eprintln!("warning: {w}");
             }
             if report.passed() {
-                let unconverged = p
-                    .windows
-                    .iter()
-                    .flat_map(|w| [&w.step1, &w.final_])
-                    .filter(|st| st.status != "converged")
-                    .count();
+                let unconverged = p.unconverged_stages();
                 if unconverged == 0 {
                     println!("{}: every constraint holds", plan.display());
                 } else {
@@ -636,12 +631,7 @@ fn plan(
             files.len()
         );
         print!("{}", check.table());
-        let unconverged = written
-            .windows
-            .iter()
-            .flat_map(|w| [&w.step1, &w.final_])
-            .filter(|st| st.status != "converged")
-            .count();
+        let unconverged = written.unconverged_stages();
         if !check.passed() {
             println!("check: VIOLATED (see FAIL rows)");
         } else if unconverged > 0 {

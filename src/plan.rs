@@ -130,6 +130,13 @@ pub struct Window {
     pub metrics: Metrics,
 }
 
+impl Window {
+    /// Whether both of the window's SCP stages converged.
+    pub fn converged(&self) -> bool {
+        self.step1.converged() && self.final_.converged()
+    }
+}
+
 /// Step 2's output for one window.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Graph {
@@ -227,6 +234,15 @@ pub struct Metrics {
     pub step3_time_s: f64,
 }
 
+impl Plan {
+    /// How many stages (Step 1 and Step 3 of every window) did not converge: feasible, not the
+    /// optimum of their window.
+    pub fn unconverged_stages(&self) -> usize {
+        let stages = self.windows.iter().flat_map(|w| [&w.step1, &w.final_]);
+        stages.filter(|st| !st.converged()).count()
+    }
+}
+
 /// One SCP stage of a window, Step 1 (P2) or Step 3 (P5 with its line-of-sight rounds): how
 /// the solve went and the team's paths.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -252,6 +268,13 @@ pub struct Stage {
     pub scp: Vec<ScpIteration>,
 }
 
+impl Stage {
+    /// Whether the stage's SCP converged (status "converged").
+    pub fn converged(&self) -> bool {
+        self.status == "converged"
+    }
+}
+
 /// The objective terms of P2, unweighted, and the weighted total.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
 pub struct ObjectiveTerms {
@@ -261,7 +284,8 @@ pub struct ObjectiveTerms {
     pub depth: f64,
     /// Σ_k Σ_n (z_n\[k\] − Z(x_n\[k\], y_n\[k\])), metres: OF1_2 when weights.of1_2 = "height".
     pub height: f64,
-    /// OF1_8: ‖P_USV\[K\] − P_USV\[0\]‖², m² (objective "away"), or OF1_8_2:
+    /// OF1_8: ‖P_USV\[K\] − c‖², c the nearest point of the USV's track (`usv.away_from`;
+    /// P_USV\[0\] in the first window), m² (objective "away"), or OF1_8_2:
     /// ‖P_USV\[K\] − dest‖², m².
     pub usv: f64,
     /// OF1_5 (Step 3): Σ_k Σ ‖P_i − P_j‖² over AUV pairs not joined by an A2A edge, m².
@@ -271,8 +295,9 @@ pub struct ObjectiveTerms {
     /// their bands.
     #[serde(default)]
     pub band: f64,
-    /// w1·energy + w2·(height or depth) − w8·usv (away) or + w8_2·usv (destination); in Step 3
-    /// also − w5·spread + w3·(A2U band) + w4·(A2A band).
+    /// (w1·energy + w2·(height or depth))/N − w8·usv (away) or + w8_2·usv (destination), with
+    /// /N only for `weights.scaling = "per_auv"` (the default); in Step 3
+    /// also − w5·spread(/N) + w3·(A2U band) + w4·(A2A band).
     pub total: f64,
 }
 

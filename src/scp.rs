@@ -383,14 +383,19 @@ mod tests {
         }
     }
 
-    #[test]
-    fn scvx_finds_the_known_optimum_of_a_nonconvex_problem() {
-        let settings = Scp {
+    /// The SCP settings of the hyperbola tests: a tight tolerance, a small first radius.
+    fn settings() -> Scp {
+        Scp {
             trust_region: 0.5,
             penalty: 10.0,
             tolerance: 1e-7,
             ..Scp::default()
-        };
+        }
+    }
+
+    #[test]
+    fn scvx_finds_the_known_optimum_of_a_nonconvex_problem() {
+        let settings = settings();
         let mut seen = 0;
         let out = solve(
             &mut Hyperbola {
@@ -416,12 +421,7 @@ mod tests {
     /// radius of 0.5; with trouble at every radius it gives up after 3 retries in a row.
     #[test]
     fn regression_a_solve_in_numerical_trouble_is_a_rejected_step() {
-        let settings = Scp {
-            trust_region: 0.5,
-            penalty: 10.0,
-            tolerance: 1e-7,
-            ..Scp::default()
-        };
+        let settings = settings();
         let mut problem = Hyperbola {
             solver: None,
             trouble_above: 0.2,

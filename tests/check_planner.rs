@@ -19,6 +19,50 @@ fn plan_on(s: &Scenario, f: &Seafloor, source: FloorSource) -> shoal::plan::Plan
         .expect("the planner plans")
 }
 
+/// Plan `s` on its own floor and require the plan to pass its check; the plan.
+fn plans_and_passes(s: &Scenario) -> shoal::plan::Plan {
+    let (f, source) = scenario_floor(s, std::path::Path::new(".")).unwrap();
+    let p = plan_on(s, &f, source);
+    let r = check_plan(&p, &f);
+    assert!(r.passed(), "\n{}", r.table());
+    p
+}
+
+/// A draw of issue 13's sweep (`examples/feasible_sweep.rs`): the default scenario with these
+/// values, and as there d_t = 0.2·d_s and d_max = max(400 m, 2·d_s).
+struct Draw {
+    seed: u64,
+    windows: usize,
+    auvs: usize,
+    steps: usize,
+    dt: f64,
+    sonar_range: f64,
+    auv_speed: f64,
+    usv_speed: f64,
+    seamounts: usize,
+    valleys: usize,
+}
+
+impl Draw {
+    fn scenario(&self) -> Scenario {
+        let mut s = Scenario {
+            seed: self.seed,
+            windows: self.windows,
+            ..Scenario::default()
+        };
+        s.team.auvs = self.auvs;
+        (s.horizon.steps, s.horizon.dt) = (self.steps, self.dt);
+        let ds = self.sonar_range;
+        s.acoustic.sonar_range = ds;
+        s.acoustic.band_tolerance = 0.2 * ds;
+        s.acoustic.max_range = s.acoustic.max_range.max(2.0 * ds);
+        (s.auv.max_speed, s.usv.max_speed) = (self.auv_speed, self.usv_speed);
+        s.seafloor.synthetic.seamounts = self.seamounts;
+        s.seafloor.synthetic.valleys = self.valleys;
+        s
+    }
+}
+
 /// A sloping floor with two Gaussian seamounts, 25 m cells over [−3000, 3000]².
 fn floor() -> Seafloor {
     let (n, c, x0) = (241usize, 25.0, -3000.0);
@@ -311,24 +355,21 @@ fn regression_slow_auvs_behind_a_fast_usv_plan() {
 /// that with a grown penalty it predicted no decrease at all. The mission now plans.
 #[test]
 fn regression_a_window_that_starts_at_the_grid_edge_plans() {
-    let mut s = Scenario {
-        seed: 881340,
-        windows: 2,
-        ..Scenario::default()
-    };
-    s.team.auvs = 6;
-    s.horizon.steps = 28;
-    s.horizon.dt = 187.0158336695849;
-    s.auv.max_speed = 2.4099022587040375;
-    s.usv.max_speed = 2.600554974527508;
-    s.acoustic.sonar_range = 65.6259253368803;
-    s.acoustic.band_tolerance = 0.2 * s.acoustic.sonar_range;
-    s.seafloor.synthetic.seamounts = 10;
-    s.seafloor.synthetic.valleys = 7;
-    let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
-    let p = plan_on(&s, &f, source);
-    let r = check_plan(&p, &f);
-    assert!(r.passed(), "\n{}", r.table());
+    let p = plans_and_passes(
+        &Draw {
+            seed: 881340,
+            windows: 2,
+            auvs: 6,
+            steps: 28,
+            dt: 187.0158336695849,
+            sonar_range: 65.6259253368803,
+            auv_speed: 2.4099022587040375,
+            usv_speed: 2.600554974527508,
+            seamounts: 10,
+            valleys: 7,
+        }
+        .scenario(),
+    );
     assert_eq!(p.metrics.connected_fraction, 1.0);
 }
 
@@ -338,24 +379,21 @@ fn regression_a_window_that_starts_at_the_grid_edge_plans() {
 /// fails the SCP takes it as a rejected step (a smaller trust region).
 #[test]
 fn regression_a_solver_numerical_error_is_not_the_end_of_the_plan() {
-    let mut s = Scenario {
-        seed: 492619,
-        ..Scenario::default()
-    };
-    s.team.auvs = 4;
-    s.horizon.steps = 7;
-    s.horizon.dt = 48.829932772949356;
-    s.acoustic.sonar_range = 209.0062125455294;
-    s.acoustic.band_tolerance = 41.80124250910588;
-    s.acoustic.max_range = 418.0124250910588;
-    s.auv.max_speed = 1.3731034601038403;
-    s.usv.max_speed = 0.7196998815489309;
-    s.seafloor.synthetic.seamounts = 40;
-    s.seafloor.synthetic.valleys = 25;
-    let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
-    let p = plan_on(&s, &f, source);
-    let r = check_plan(&p, &f);
-    assert!(r.passed(), "\n{}", r.table());
+    plans_and_passes(
+        &Draw {
+            seed: 492619,
+            windows: 1,
+            auvs: 4,
+            steps: 7,
+            dt: 48.829932772949356,
+            sonar_range: 209.0062125455294,
+            auv_speed: 1.3731034601038403,
+            usv_speed: 0.7196998815489309,
+            seamounts: 40,
+            valleys: 25,
+        }
+        .scenario(),
+    );
 }
 
 /// Regression (issue 13's property test in CI): "the acoustic chain breaks at window 0, step 3"
@@ -364,23 +402,21 @@ fn regression_a_solver_numerical_error_is_not_the_end_of_the_plan() {
 /// with the edge out of range. P4 now prefers paths of in-range edges, and the mission plans.
 #[test]
 fn regression_p4_prefers_edges_in_range_and_the_chain_holds() {
-    let mut s = Scenario {
-        seed: 352538,
-        ..Scenario::default()
-    };
-    s.team.auvs = 4;
-    s.horizon.steps = 8;
-    s.horizon.dt = 25.006624249034527;
-    s.acoustic.sonar_range = 155.25792757985485;
-    s.acoustic.band_tolerance = 0.2 * s.acoustic.sonar_range;
-    s.auv.max_speed = 2.1343876116131484;
-    s.usv.max_speed = 1.5290850844886605;
-    s.seafloor.synthetic.seamounts = 40;
-    s.seafloor.synthetic.valleys = 25;
-    let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
-    let p = plan_on(&s, &f, source);
-    let r = check_plan(&p, &f);
-    assert!(r.passed(), "\n{}", r.table());
+    let p = plans_and_passes(
+        &Draw {
+            seed: 352538,
+            windows: 1,
+            auvs: 4,
+            steps: 8,
+            dt: 25.006624249034527,
+            sonar_range: 155.25792757985485,
+            auv_speed: 2.1343876116131484,
+            usv_speed: 1.5290850844886605,
+            seamounts: 40,
+            valleys: 25,
+        }
+        .scenario(),
+    );
     assert_eq!(p.metrics.connected_fraction, 1.0);
 }
 

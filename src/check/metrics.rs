@@ -218,13 +218,29 @@ impl Checker<'_> {
         [connected, chain].map(|c| c as f64 / steps as f64)
     }
 
+    /// What metrics a plan records, and over which windows: each window's own, then the
+    /// mission's (every window).
+    fn scopes(&self) -> Vec<(String, &Metrics, std::ops::Range<usize>)> {
+        let nw = self.plan.windows.len();
+        let windows = self.plan.windows.iter().enumerate();
+        windows
+            .map(|(w, win)| (format!("window {w}"), &win.metrics, w..w + 1))
+            .chain(std::iter::once((
+                "mission".into(),
+                &self.plan.metrics,
+                0..nw,
+            )))
+            .collect()
+    }
+
     // ------------------------------------------------------------------------------------
     // recorded metrics
     // ------------------------------------------------------------------------------------
     pub(super) fn metrics(&self) -> FamilyResult {
         let mut f = Family::new("recorded metrics", "relative", METRIC_TOL);
-        let mut compare = |what: &str, m: &Metrics, stages: &[&Stage]| {
-            let [energy, mean, least, rate] = recompute(stages, self);
+        let finals: Vec<&Stage> = self.plan.windows.iter().map(|w| &w.final_).collect();
+        for (what, m, range) in self.scopes() {
+            let [energy, mean, least, rate] = recompute(&finals[range.clone()], self);
             for (name, stored, found) in [
                 ("input_energy", m.input_energy, energy),
                 ("mean_height", m.mean_height, mean),
@@ -236,15 +252,7 @@ impl Checker<'_> {
                     format!("{what} {name}: stored {stored}, recomputed {found}")
                 });
             }
-        };
-        let finals: Vec<&Stage> = self.plan.windows.iter().map(|w| &w.final_).collect();
-        for (w, win) in self.plan.windows.iter().enumerate() {
-            compare(&format!("window {w}"), &win.metrics, &finals[w..=w]);
-        }
-        compare("mission", &self.plan.metrics, &finals);
-        let nw = self.plan.windows.len();
-        let mut fractions = |what: String, m: &Metrics, w0: usize, w1: usize| {
-            let [connected, chain] = self.fractions(w0, w1);
+            let [connected, chain] = self.fractions(range.start, range.end);
             for (name, stored, found) in [
                 ("connected_fraction", m.connected_fraction, connected),
                 ("chain_fraction", m.chain_fraction, chain),
@@ -253,16 +261,7 @@ impl Checker<'_> {
                     format!("{what} {name}: stored {stored}, recounted {found}")
                 });
             }
-        };
-        for w in 0..nw {
-            fractions(
-                format!("window {w}"),
-                &self.plan.windows[w].metrics,
-                w,
-                w + 1,
-            );
         }
-        fractions("mission".into(), &self.plan.metrics, 0, nw);
         f.finish()
     }
 
@@ -273,46 +272,34 @@ impl Checker<'_> {
         let mut f = Family::new("recorded explored area", "relative", AREA_TOL);
         let finals: Vec<&Stage> = self.plan.windows.iter().map(|w| &w.final_).collect();
         let swath = self.s.auv.swath_width;
-        let nw = self.plan.windows.len();
-        let mut area = |what: String, m: &Metrics, w0: usize, w1: usize| {
+        let mut measured = Vec::new(); // each scope's area, windows first, then the mission
+        for (what, m, range) in self.scopes() {
             let stored = m.explored_area_km2;
-            let Some(found) = explored_km2(&finals[w0..w1], swath) else {
+            let Some(found) = explored_km2(&finals[range], swath) else {
                 f.record(f64::NEG_INFINITY, || {
                     format!("{what}: paths too long to measure the explored area on")
                 });
-                return;
+                return f.finish();
             };
             let off = (stored - found).abs() / stored.abs().max(found.abs()).max(1e-4);
             f.record(-off, || {
                 format!("{what}: stored {stored} km², measured across {found} km²")
             });
+            measured.push(found);
+        }
+        // the revisited area: Σ window areas − the union, both measured above
+        let (union, each) = measured.split_last().expect("the mission is a scope");
+        let found = if each.len() > 1 {
+            (each.iter().sum::<f64>() - union).max(0.0)
+        } else {
+            0.0
         };
-        for w in 0..nw {
-            area(
-                format!("window {w}"),
-                &self.plan.windows[w].metrics,
-                w,
-                w + 1,
-            );
-        }
-        area("mission".into(), &self.plan.metrics, 0, nw);
-        // the revisited area: Σ window areas − the union, both measured here
-        let measured: Option<Vec<f64>> = (0..nw)
-            .map(|w| explored_km2(&finals[w..w + 1], swath))
-            .collect();
-        if let (Some(each), Some(union)) = (measured, explored_km2(&finals, swath)) {
-            let found = if nw > 1 {
-                (each.iter().sum::<f64>() - union).max(0.0)
-            } else {
-                0.0
-            };
-            let stored = self.plan.metrics.revisited_area_km2;
-            // relative to the mission's area: the two estimates' errors are of its size
-            let off = (stored - found).abs() / union.max(stored.abs()).max(1e-4);
-            f.record(-off, || {
-                format!("mission revisited area: stored {stored} km², measured across {found} km²")
-            });
-        }
+        let stored = self.plan.metrics.revisited_area_km2;
+        // relative to the mission's area: the two estimates' errors are of its size
+        let off = (stored - found).abs() / union.max(stored.abs()).max(1e-4);
+        f.record(-off, || {
+            format!("mission revisited area: stored {stored} km², measured across {found} km²")
+        });
         f.finish()
     }
 }

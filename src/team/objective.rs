@@ -32,7 +32,8 @@ pub struct Terms {
     pub depth: f64,
     /// Σ (z − Z(x, y)).
     pub height: f64,
-    /// OF1_8 (−‖P_USV\[K\] − P_USV\[0\]‖²) or OF1_8_2 (‖P_USV\[K\] − P∞‖²), m².
+    /// OF1_8's squared distance ‖P_USV\[K\] − c‖² from the nearest point c of the track
+    /// (positive; the objective subtracts it), or OF1_8_2 (‖P_USV\[K\] − P∞‖²), m².
     pub usv: f64,
     /// OF1_5: Σ_k Σ ‖P_i − P_j‖² over pairs not joined by an A2A edge at k, m².
     pub spread: f64,
