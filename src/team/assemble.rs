@@ -101,6 +101,11 @@ pub(super) fn assemble(
         for k in 1..=kk {
             trust::usv(p, &mut m, r, radius, k);
         }
+    } else if p.away_from_a_track() {
+        // OF1_8 measured from a track of several points is not concave (a minimum over its
+        // segments), so its linearisation is no majorant: near a turn of the track it promises
+        // a decrease at any distance. Trust it only within Δ of the reference's P_USV[K].
+        trust::usv(p, &mut m, r, radius, kk);
     }
     heading::cones(p, &pieces, &mut m);
     links::upper_cones(p, &mut m); // Step 3 only

@@ -213,6 +213,42 @@ mod tests {
         assert!(guess > 500.0, "{guess} {straight}");
     }
 
+    /// Regression (issue 14's review: seed 2, N = 20, windows 5–9 of 10 stalled in Step 1 in
+    /// the grid's south-east corner, the team moving 0.8–0.9 km a window instead of 3): OF1_8
+    /// measured from a track of several points is a minimum over its segments, not concave, so
+    /// its linearisation is no majorant, and on a grid without obstacles the USV had no trust
+    /// region: the model promised the same decrease at every radius and the SCP shrank it to
+    /// nothing. With a track, P_USV[K] now keeps within Δ of the reference. Here the track lies
+    /// ahead of the guess, whose linearisation pulls the USV back by hundreds of metres.
+    #[test]
+    fn regression_the_usv_keeps_to_the_trust_region_when_away_is_from_a_track() {
+        use crate::scp::ScpProblem;
+        let mut s = Scenario::default();
+        s.team.auvs = 2;
+        s.horizon.steps = 5;
+        let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
+        let keep_out = floor.keep_out();
+        let init = initial_state(&s, &floor, &keep_out).unwrap();
+        let start = Start {
+            usv: init.usv,
+            auvs: init.auvs,
+        };
+        let auv = AuvModel::new(&s.auv, s.horizon.dt).unwrap();
+        let usv = UsvModel {
+            dt: s.horizon.dt,
+            max_speed: s.usv.max_speed,
+        };
+        let o = start.usv;
+        let track = [[o[0] + 2000.0, o[1] - 500.0], [o[0] + 2000.0, o[1] + 500.0]];
+        let mut p = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start).with_track(&track);
+        let reference = p.initial_guess(None);
+        let radius = 1.0;
+        let (candidate, _, _) = p.solve_model(&reference, radius, 1e3).unwrap();
+        let (a, b) = (reference.usv_p[5], candidate.usv_p[5]);
+        let moved = (b[0] - a[0]).hypot(b[1] - a[1]);
+        assert!(moved <= radius + 1e-6, "P_USV[K] moved {moved} m");
+    }
+
     /// The paper's 5 AUVs go at full speed (1.5 m/s for 2000 s: 3000 m, as Step 1 then plans),
     /// and so do 20 with the team's terms weighed per AUV (issue 14). With the paper's sums
     /// (`weights.scaling = "sum"`) the energy of 20 AUVs outweighs OF1_8 and their formation

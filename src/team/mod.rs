@@ -50,7 +50,7 @@ pub use objective::Terms;
 
 use crate::conic::{ConicSolver, Pattern, SolveReport};
 use crate::error::{PlanError, Step};
-use crate::scenario::{AwayFrom, Scenario};
+use crate::scenario::{AwayFrom, Scenario, UsvObjective};
 use crate::scp::{self, Evaluation, Iteration, ScpOutcome, ScpProblem};
 use crate::seafloor::Seafloor;
 use crate::trajectory::{Start, Trajectory};
@@ -124,6 +124,12 @@ impl<'a> TeamProblem<'a> {
             self.track = earlier.iter().copied().chain([self.start.usv]).collect();
         }
         self
+    }
+
+    /// Whether OF1_8 ("away") is measured from a track of more than one point: then it is not
+    /// concave, and its model needs a trust region on P_USV\[K\].
+    fn away_from_a_track(&self) -> bool {
+        self.scenario.usv.objective == UsvObjective::Away && self.track.len() > 1
     }
 
     /// The points OF1_8 measures "away" from (see `with_track`).
