@@ -7,6 +7,9 @@
 //!   [`BARELY_MOVES`] of the way a formation could go, i.e. the team's terms outweigh the USV's.
 //! - The grid's edge: a vehicle comes within one step's travel of the edge of the seafloor
 //!   grid, which the plan cannot cross; a long mission then turns along it or stops.
+//! - More AUVs than lanes: every AUV stays within d_max of the USV (C1_5), so a window's
+//!   swaths lie in a corridor 2·d_max wide; a team of more than 2·d_max / swath AUVs overlaps
+//!   lanes already swept, and a window explores little more than a smaller team would.
 
 use crate::plan::Window;
 use crate::scenario::{Scenario, UsvObjective};
@@ -18,13 +21,40 @@ pub const BARELY_MOVES: f64 = 0.1;
 
 /// Every warning of a plan's windows, in window order.
 pub fn warnings(windows: &[Window], s: &Scenario, floor: &Seafloor) -> Vec<String> {
-    let mut out = unconverged(windows, s);
+    let mut out: Vec<String> = more_auvs_than_lanes(s).into_iter().collect();
+    out.extend(unconverged(windows, s));
     for w in windows {
         let edge = grid_edge(w, s, floor);
         out.extend(barely_moves(w, s, edge.is_some()));
         out.extend(edge);
     }
     out
+}
+
+/// The number of swath-wide lanes in the corridor 2·d_max wide in which C1_5 keeps the team,
+/// or None when the swath is not positive (no explored area is measured).
+pub fn lanes(s: &Scenario) -> Option<usize> {
+    let w = s.auv.swath_width;
+    (w > 0.0 && w.is_finite()).then(|| (2.0 * s.acoustic.max_range / w).floor() as usize)
+}
+
+/// The warning for a team larger than the corridor's [`lanes`] (seed 4 of the default
+/// scenario explores 1.666 km² with 20 AUVs and 1.640 km² with 30: BENCHMARKS.md).
+fn more_auvs_than_lanes(s: &Scenario) -> Option<String> {
+    let lanes = lanes(s)?;
+    let n = s.team.auvs;
+    (n > lanes).then(|| {
+        format!(
+            "{n} AUVs for {lanes} lanes: every AUV stays within acoustic.max_range = {} m of the \
+             USV (C1_5), so a window's swaths (auv.swath_width = {} m) lie in a corridor {} m \
+             wide, room for {lanes} side by side; the other AUVs sweep lanes already swept, and \
+             a window explores little more than with {lanes} AUVs (raise acoustic.max_range, or \
+             plan more windows)",
+            s.acoustic.max_range,
+            s.auv.swath_width,
+            2.0 * s.acoustic.max_range,
+        )
+    })
 }
 
 /// A warning for every stage that did not converge: its plan is feasible, not the optimum.
@@ -151,4 +181,24 @@ fn grid_edge(w: &Window, s: &Scenario, floor: &Seafloor) -> Option<String> {
          it (usv.objective = \"destination\")",
         w.index
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_team_larger_than_the_corridors_lanes_is_told_so() {
+        let mut s = Scenario::default();
+        // d_max = 400 m, swath 50 m: 16 lanes
+        assert_eq!(lanes(&s), Some(16));
+        s.team.auvs = 16;
+        assert_eq!(more_auvs_than_lanes(&s), None);
+        s.team.auvs = 17;
+        let w = more_auvs_than_lanes(&s).expect("a warning");
+        assert!(w.starts_with("17 AUVs for 16 lanes"), "{w}");
+        assert!(w.contains("acoustic.max_range = 400"), "{w}");
+        s.auv.swath_width = 0.0;
+        assert_eq!(more_auvs_than_lanes(&s), None);
+    }
 }
