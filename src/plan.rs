@@ -345,6 +345,12 @@ pub struct ScpIteration {
     pub accepted: bool,
     /// Largest true constraint violation of the candidate.
     pub violation: f64,
+    /// Whether the subproblem was a momentum step, its model built about the reference
+    /// extrapolated along its last step (`scp.momentum`): `predicted` and `ratio` are then
+    /// measured from the extrapolated point, and the step is accepted only if it lowers the
+    /// merit below `merit_before`. Absent in older plans: false.
+    #[serde(default)]
+    pub extrapolated: bool,
     /// Clarabel's status for the subproblem.
     pub solver_status: String,
     /// Clarabel's interior-point iterations for the subproblem.

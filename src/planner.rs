@@ -177,6 +177,7 @@ fn iteration_record(it: &Iteration<SolveReport>) -> ScpIteration {
         ratio: it.ratio,
         accepted: it.accepted,
         violation: it.violation,
+        extrapolated: it.extrapolated,
         solver_status: it.solve.status.to_string(),
         solver_iterations: it.solve.iterations,
         solver_time_s: it.solve.solve_time_s,

@@ -36,6 +36,25 @@ pub trait ScpProblem {
         radius: f64,
         penalty: f64,
     ) -> Result<(Self::Iterate, f64, Self::Report), Self::Error>;
+    /// The point x + β·(x − previous), a step of the iteration's momentum beyond the last
+    /// accepted iterate x (for trajectories: the inputs extrapolated and rolled through the
+    /// dynamics), or None (the default) when the problem does not support it, which turns the
+    /// momentum off.
+    fn extrapolate(
+        &self,
+        _x: &Self::Iterate,
+        _previous: &Self::Iterate,
+        _beta: f64,
+    ) -> Option<Self::Iterate> {
+        None
+    }
+    /// The length of the step from `from` to `to` in the trust region's own norm, or None
+    /// (the default) if the problem cannot say. A rejected step then shrinks the radius to
+    /// below the step it took, not only to half the radius: a model trusted to 12.8 km whose
+    /// step of 40 m fails is next trusted to 20 m, not 6.4 km (8 solves saved).
+    fn step_length(&self, _from: &Self::Iterate, _to: &Self::Iterate) -> Option<f64> {
+        None
+    }
     /// The true objective J and the weighted sum of true violations V (so φ = J + λV), and the
     /// largest single violation (in the constraint's own unit).
     fn evaluate(&self, x: &Self::Iterate) -> Evaluation;
@@ -66,6 +85,10 @@ pub struct Iteration<R> {
     pub accepted: bool,
     /// The candidate's largest true violation.
     pub violation: f64,
+    /// Whether the model was built about the extrapolated point of the momentum step (then
+    /// `merit_before` is still the reference's, and `predicted` and `ratio` are measured from
+    /// the extrapolated point).
+    pub extrapolated: bool,
     /// The problem's report of the convex solve.
     pub solve: R,
 }
@@ -136,6 +159,8 @@ const PENALTY_GROWTH: f64 = 10.0;
 /// Retries, each with half the trust radius, of a convex solve that ends in numerical trouble.
 const TROUBLE_RETRIES: usize = 3;
 const PENALTY_MAX_FACTOR: f64 = 1e4;
+/// The most a single rejected step shrinks the radius by (to below the step's length).
+const MAX_SHRINK: f64 = 16.0;
 /// Accepted iterations after a rejection during which Δ may not grow. Without it a floor that
 /// the model can trust for 25 m but not 50 m makes the loop alternate accept (25 m, ρ ≈ 1, grow)
 /// and reject (50 m, ρ ≪ 0, shrink), wasting every other iteration (seen with N = 10).
@@ -172,9 +197,26 @@ where
     // why the loop ends if it does not converge
     let mut status = ScpStatus::MaxIterations;
     let mut troubles = 0usize;
+    // the momentum step: the reference before the last accepted step, Nesterov's t, and
+    // whether the steps since the last restart were all good ones
+    let mut previous: Option<P::Iterate> = None;
+    let mut momentum = 1.0f64;
+    let mut good_run = false;
     for it in 0..settings.max_iterations {
+        let next_momentum = 0.5 * (1.0 + (1.0 + 4.0 * momentum * momentum).sqrt());
+        let beta = (momentum - 1.0) / next_momentum;
+        let ahead = match &previous {
+            Some(prev) if settings.momentum && good_run && beta > 0.0 => {
+                problem.extrapolate(&reference, prev, beta).map(|z| {
+                    let e = problem.evaluate(&z);
+                    (z, e)
+                })
+            }
+            _ => None,
+        };
+        let model_reference = ahead.as_ref().map_or(&reference, |(z, _)| z);
         let (candidate, model_merit, report) =
-            match problem.solve_model(&reference, radius, penalty) {
+            match problem.solve_model(model_reference, radius, penalty) {
                 Ok(solved) => solved,
                 // the solver's numerical trouble: a smaller model, as after a rejected step (at
                 // most `TROUBLE_RETRIES` in a row; not an iteration of the log, which holds solves)
@@ -189,8 +231,10 @@ where
         let candidate_eval = problem.evaluate(&candidate);
         let phi_ref = reference_eval.merit(penalty);
         let phi_cand = candidate_eval.merit(penalty);
-        let predicted = phi_ref - model_merit;
-        let actual = phi_ref - phi_cand;
+        // the model's own reference: the extrapolated point in a momentum step
+        let phi_model = ahead.as_ref().map_or(phi_ref, |(_, e)| e.merit(penalty));
+        let predicted = phi_model - model_merit;
+        let actual = phi_model - phi_cand;
         let ratio = if predicted.abs() > 0.0 {
             actual / predicted
         } else {
@@ -208,8 +252,43 @@ where
             ratio,
             accepted: false,
             violation: candidate_eval.max_violation,
+            extrapolated: ahead.is_some(),
             solve: report,
         };
+
+        let step = problem.step_length(&reference, &candidate);
+        if ahead.is_some() {
+            // a momentum step is kept only if it lowers the merit below the reference's and
+            // its model was good; otherwise the momentum restarts and the next iteration is
+            // an ordinary one about the reference, with the same radius
+            iterations += 1;
+            // (its gain is judged against the reference: the prediction from the
+            // extrapolated point also counts the violations the extrapolation made)
+            let gain = phi_ref - phi_cand;
+            if !negligible && ratio >= RHO1 && gain > settings.tolerance * scale {
+                record.accepted = true;
+                momentum = next_momentum;
+                // a kept momentum step is a good step: the radius may grow
+                cooldown = cooldown.saturating_sub(1);
+                if cooldown == 0 {
+                    radius = (radius * GROW).min(max_radius);
+                }
+                previous = Some(std::mem::replace(&mut reference, candidate));
+                reference_eval = candidate_eval;
+                if reference_eval.max_violation <= settings.feasibility_tol
+                    && best
+                        .as_ref()
+                        .map_or(true, |(_, e)| reference_eval.objective < e.objective)
+                {
+                    best = Some((reference.clone(), reference_eval));
+                }
+            } else {
+                momentum = 1.0;
+                good_run = false;
+            }
+            observer(&record);
+            continue;
+        }
 
         if negligible {
             iterations += 1;
@@ -233,7 +312,10 @@ where
 
         if first || ratio >= RHO0 {
             record.accepted = true;
-            reference = candidate;
+            // the momentum builds over good steps (ρ ≥ RHO2: the model is trusted)
+            good_run = !first && ratio >= RHO2;
+            momentum = if good_run { next_momentum } else { 1.0 };
+            previous = Some(std::mem::replace(&mut reference, candidate));
             reference_eval = candidate_eval;
             have_feasible_reference = true;
             if reference_eval.max_violation <= settings.feasibility_tol
@@ -244,6 +326,10 @@ where
                 best = Some((reference.clone(), reference_eval));
             }
         }
+        if !record.accepted {
+            good_run = false;
+            momentum = 1.0;
+        }
         if !first {
             if ratio < RHO0 {
                 cooldown = GROWTH_COOLDOWN;
@@ -251,7 +337,9 @@ where
                 cooldown = cooldown.saturating_sub(1);
             }
             if ratio < RHO1 {
-                radius /= SHRINK;
+                // below the step just taken (at most MAX_SHRINK at once), when it is known
+                let floor = radius / MAX_SHRINK;
+                radius = step.map_or(radius, |s| s.min(radius)).max(floor * SHRINK) / SHRINK;
             } else if ratio > RHO2 && cooldown == 0 {
                 radius = (radius * GROW).min(max_radius);
             }
@@ -437,5 +525,119 @@ mod tests {
         };
         let e = solve(&mut always, [3.0, 0.5], &settings, &mut |_| {});
         assert_eq!(e.err(), Some(Fail::Trouble));
+    }
+
+    /// min a/2·‖x − t‖² − b/2·‖x‖² over x ∈ ℝ², b < a: the concave reward −b/2·‖x‖² is
+    /// linearised about the reference (a majorant, as OF1_5 and OF1_8 are), so the SCP is a
+    /// majorisation-minimisation whose steps shrink by b/a each (0.95 here): the slow tail of
+    /// issue 22. The optimum is x* = a·t/(a − b).
+    struct Tail {
+        solver: Option<ConicSolver>,
+    }
+    const A: f64 = 1.0;
+    const B: f64 = 0.95;
+    const T: [f64; 2] = [1.0, -0.5];
+
+    impl ScpProblem for Tail {
+        type Iterate = [f64; 2];
+        type Error = Fail;
+        type Report = ();
+        fn solve_model(
+            &mut self,
+            r: &[f64; 2],
+            radius: f64,
+            _penalty: f64,
+        ) -> Result<([f64; 2], f64, ()), Fail> {
+            // a/2·‖x‖² − (a·t + b·r)ᵀx (+ constant) s.t. ‖x − r‖ ≤ Δ
+            let mut p = Triplets::default();
+            p.push(0, 0, A);
+            p.push(1, 1, A);
+            let q = [-(A * T[0] + B * r[0]), -(A * T[1] + B * r[1])];
+            let mut a = Triplets::default();
+            a.push(1, 0, -1.0);
+            a.push(2, 1, -1.0);
+            let b = [radius, -r[0], -r[1]];
+            let cones = [SecondOrderConeT(3)];
+            let s = match &mut self.solver {
+                Some(s) => {
+                    s.update(&p.vals, &q, &a.vals, &b).unwrap();
+                    s
+                }
+                None => self.solver.insert(
+                    ConicSolver::new(
+                        Pattern::new(2, 2, &p),
+                        &q,
+                        Pattern::new(3, 2, &a),
+                        &b,
+                        &cones,
+                    )
+                    .unwrap(),
+                ),
+            };
+            let sol = s.solve();
+            assert!(sol.usable());
+            let x = [sol.x[0], sol.x[1]];
+            let rr = r[0] * r[0] + r[1] * r[1];
+            let model = A / 2.0 * ((x[0] - T[0]).powi(2) + (x[1] - T[1]).powi(2))
+                - B / 2.0 * rr
+                - B * (r[0] * (x[0] - r[0]) + r[1] * (x[1] - r[1]));
+            Ok((x, model, ()))
+        }
+        fn extrapolate(&self, x: &[f64; 2], prev: &[f64; 2], beta: f64) -> Option<[f64; 2]> {
+            Some([
+                x[0] + beta * (x[0] - prev[0]),
+                x[1] + beta * (x[1] - prev[1]),
+            ])
+        }
+        fn step_length(&self, a: &[f64; 2], b: &[f64; 2]) -> Option<f64> {
+            Some((a[0] - b[0]).hypot(a[1] - b[1]))
+        }
+        fn evaluate(&self, x: &[f64; 2]) -> Evaluation {
+            let f = A / 2.0 * ((x[0] - T[0]).powi(2) + (x[1] - T[1]).powi(2))
+                - B / 2.0 * (x[0] * x[0] + x[1] * x[1]);
+            Evaluation {
+                objective: f,
+                violation: 0.0,
+                max_violation: 0.0,
+                magnitude: f.abs(),
+            }
+        }
+        fn infeasible(&self, _: &[f64; 2]) -> Fail {
+            Fail::Other
+        }
+    }
+
+    /// Issue 22: the momentum step (scp.momentum) reaches the known optimum of a slow
+    /// majorisation-minimisation tail in a fraction of the iterations the plain SCvx needs.
+    #[test]
+    fn momentum_shortens_a_slow_majorisation_tail_to_the_same_optimum() {
+        let optimum = T.map(|t| A * t / (A - B));
+        let run = |momentum: bool| {
+            let settings = Scp {
+                trust_region: 100.0,
+                tolerance: 1e-9,
+                max_iterations: 1000,
+                momentum,
+                ..Scp::default()
+            };
+            let out = solve(
+                &mut Tail { solver: None },
+                [0.0, 0.0],
+                &settings,
+                &mut |_| {},
+            )
+            .unwrap();
+            assert_eq!(out.status, ScpStatus::Converged);
+            for i in 0..2 {
+                assert!(
+                    (out.iterate[i] - optimum[i]).abs() < 1e-3 * optimum[i].abs(),
+                    "momentum {momentum}: {:?} against {optimum:?}",
+                    out.iterate
+                );
+            }
+            out.iterations
+        };
+        let (plain, with) = (run(false), run(true));
+        assert!(with * 3 < plain, "with momentum {with}, without {plain}");
     }
 }

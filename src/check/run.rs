@@ -6,6 +6,10 @@ use crate::plan::{AuvPath, Stage, Window, FORMAT};
 use crate::scenario::Scenario;
 use std::f64::consts::PI;
 
+/// The most the SCP shrinks its trust region after one entry of its log (`scp.rs`: a rejected
+/// step shrinks it to below the step it took, at most 16-fold).
+const MAX_SHRINK: f64 = 16.0;
+
 /// Accumulates the worst margin of one family.
 pub(super) struct Family {
     name: &'static str,
@@ -300,8 +304,8 @@ impl Checker<'_> {
     /// bears out: "converged" ends on the iteration that found no decrease left (not
     /// accepted); "max_iterations" ran `scp.max_iterations` iterations (in its last
     /// line-of-sight round, so at least that many); "stalled" ends with a trust region below
-    /// twice `scp.min_trust_region` (it is halved after the entry) or on an iteration that
-    /// found no decrease.
+    /// `MAX_SHRINK` times `scp.min_trust_region` (a rejected step shrinks it at most that much
+    /// after the entry) or on an iteration that found no decrease.
     fn scp_log(&mut self, w: usize, stage: &str, st: &Stage) {
         let log = &st.scp;
         self.require(log.len() == st.iterations, || {
@@ -348,7 +352,7 @@ impl Checker<'_> {
                 "it ran fewer than scp.max_iterations iterations",
             ),
             "stalled" => (
-                !last.accepted || last.trust_region < 2.0 * scp.min_trust_region,
+                !last.accepted || last.trust_region < MAX_SHRINK * scp.min_trust_region,
                 "its trust region never collapsed",
             ),
             _ => (true, ""),

@@ -284,6 +284,9 @@ pub struct Scp {
     pub min_trust_region: f64,
     /// λ: penalty weight of the merit function on constraint violation.
     pub penalty: f64,
+    /// Momentum steps (ours): after good steps, the model is built about the reference
+    /// extrapolated along its last step (Nesterov's sequence), and kept if it lowers the merit.
+    pub momentum: bool,
 }
 
 /// An explicit initial state (Algorithm 1, lines 4–5).
@@ -419,6 +422,7 @@ impl Default for Scp {
             trust_region: 200.0,
             min_trust_region: 1e-3,
             penalty: 1.0e3,
+            momentum: true,
         }
     }
 }

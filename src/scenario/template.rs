@@ -234,6 +234,11 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              0 < value < trust_region."
         }
         "scp.penalty" => "λ: penalty weight of the merit function on constraint violation. > 0.",
+        "scp.momentum" => {
+            "Momentum steps (ours): after good steps the model is built about the reference \
+             extrapolated along its last step, and its candidate kept if it lowers the merit. \
+             true or false."
+        }
         "initial" => {
             "Explicit initial state (Algorithm 1, lines 4–5). When absent, the USV starts at \
              the origin and the AUVs are drawn from `seed` within d_s of it (C1_6 at k = 0). \

@@ -401,6 +401,57 @@ impl ScpProblem for TeamProblem<'_> {
         }
     }
 
+    /// The inputs extrapolated along the last step, rolled through the vehicle models from
+    /// the window's start (a trajectory of the dynamics, as every iterate is).
+    fn extrapolate(&self, x: &Trajectory, previous: &Trajectory, beta: f64) -> Option<Trajectory> {
+        fn ahead<const D: usize>(u: &[[f64; D]], v: &[[f64; D]], beta: f64) -> Vec<[f64; D]> {
+            u.iter()
+                .zip(v)
+                .map(|(a, b)| std::array::from_fn(|i| a[i] + beta * (a[i] - b[i])))
+                .collect()
+        }
+        let usv_u = ahead(&x.usv_u, &previous.usv_u, beta);
+        let auv_u = x
+            .auv_u
+            .iter()
+            .zip(&previous.auv_u)
+            .map(|(a, b)| ahead(a, b, beta))
+            .collect();
+        Some(Trajectory::simulate(
+            &self.start,
+            usv_u,
+            auv_u,
+            &self.auv,
+            &self.usv,
+        ))
+    }
+
+    /// The largest horizontal move of an AUV waypoint, and of the USV's where it has a trust
+    /// region (the norm of `trust`).
+    fn step_length(&self, from: &Trajectory, to: &Trajectory) -> Option<f64> {
+        let h = |a: &[f64], b: &[f64]| (a[0] - b[0]).hypot(a[1] - b[1]);
+        let mut step = 0.0f64;
+        for (a, b) in from.auv_p.iter().zip(&to.auv_p) {
+            for (p, q) in a.iter().zip(b) {
+                step = step.max(h(p, q));
+            }
+        }
+        let kk = self.layout.k;
+        let usv = if self.layout.obstacles {
+            0..kk + 1
+        } else if self.away_from_a_track() {
+            kk..kk + 1
+        } else {
+            0..0
+        };
+        for k in usv {
+            if let (Some(p), Some(q)) = (from.usv_p.get(k), to.usv_p.get(k)) {
+                step = step.max(h(p, q));
+            }
+        }
+        Some(step)
+    }
+
     fn numerical_trouble(&self, e: &PlanError) -> bool {
         matches!(e, PlanError::Solver { status, .. } if status.numerical_trouble())
     }

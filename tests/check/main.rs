@@ -879,6 +879,7 @@ fn converged_log() -> Vec<shoal::plan::ScpIteration> {
         ratio: 1.0,
         accepted: false,
         violation: 0.0,
+        extrapolated: false,
         solver_status: "Solved".into(),
         solver_iterations: 10,
         solver_time_s: 0.0,
