@@ -15,6 +15,13 @@
 //! violation is below the feasibility tolerance; if
 //! the decrease vanishes while a violation remains, λ is raised (up to 10⁴·λ₀) before the
 //! constraint is declared impossible.
+//!
+//! Ours (issue 22): a rejected step shrinks Δ to half the step it took (at most 16-fold at
+//! once), where the problem can measure it (`ScpProblem::step_length`); and, with
+//! `scp.momentum`, after good steps the model is built about the reference extrapolated along
+//! its last step (Nesterov's sequence) and its candidate kept only if it lowers the merit by
+//! more than the tolerance: the linearised concave terms make the model a majorant, whose
+//! steps shrink geometrically (docs/method.md, "Momentum steps").
 
 use crate::scenario::Scp;
 use std::time::Instant;
@@ -337,9 +344,7 @@ where
                 cooldown = cooldown.saturating_sub(1);
             }
             if ratio < RHO1 {
-                // below the step just taken (at most MAX_SHRINK at once), when it is known
-                let floor = radius / MAX_SHRINK;
-                radius = step.map_or(radius, |s| s.min(radius)).max(floor * SHRINK) / SHRINK;
+                radius = shrunk(radius, step);
             } else if ratio > RHO2 && cooldown == 0 {
                 radius = (radius * GROW).min(max_radius);
             }
@@ -370,6 +375,13 @@ where
     } else {
         Err(ScpFailure::NoIterate.into())
     }
+}
+
+/// The radius after a rejected step (ρ < RHO1) of length `step` (None: unknown): half the
+/// step, or half the radius if the step reached it, but at most `MAX_SHRINK`-fold at once.
+fn shrunk(radius: f64, step: Option<f64>) -> f64 {
+    let floor = radius / MAX_SHRINK;
+    step.map_or(radius, |s| s.min(radius)).max(floor * SHRINK) / SHRINK
 }
 
 /// Failures of the SCP loop itself.
@@ -605,6 +617,17 @@ mod tests {
         fn infeasible(&self, _: &[f64; 2]) -> Fail {
             Fail::Other
         }
+    }
+
+    /// Issue 22: a rejected step shrinks the radius to half the step it took, at most 16-fold
+    /// (a model trusted to 12.8 km whose 40 m step failed took eight halvings to get there).
+    #[test]
+    fn a_rejected_step_shrinks_the_radius_below_the_step_it_took() {
+        assert_eq!(shrunk(100.0, Some(40.0)), 20.0);
+        assert_eq!(shrunk(100.0, Some(1000.0)), 50.0);
+        assert_eq!(shrunk(100.0, None), 50.0);
+        assert_eq!(shrunk(12_800.0, Some(40.0)), 800.0);
+        assert_eq!(shrunk(12_800.0, Some(0.0)), 800.0);
     }
 
     /// Issue 22: the momentum step (scp.momentum) reaches the known optimum of a slow

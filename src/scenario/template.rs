@@ -236,8 +236,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "scp.penalty" => "λ: penalty weight of the merit function on constraint violation. > 0.",
         "scp.momentum" => {
             "Momentum steps (ours): after good steps the model is built about the reference \
-             extrapolated along its last step, and its candidate kept if it lowers the merit. \
-             true or false."
+             extrapolated along its last step, and its candidate kept if it lowers the merit; \
+             converged runs end sooner, default-tolerance runs take longer. true or false."
         }
         "initial" => {
             "Explicit initial state (Algorithm 1, lines 4–5). When absent, the USV starts at \
