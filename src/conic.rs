@@ -370,7 +370,9 @@ impl ConicSolver {
     }
 
     /// Solve with the current data. A solve that ends in numerical trouble
-    /// ([`SolverStatus::numerical_trouble`]) is solved once more with iterative refinement on
+    /// ([`SolverStatus::numerical_trouble`]) or at reduced accuracy (`AlmostSolved`: issue 22's
+    /// scaling run found a Step 1 whose AlmostSolved candidate, re-simulated, broke C1_6 by
+    /// 3.3·10⁻⁴ m, beyond the model's 10⁻³ m margin) is solved once more with iterative refinement on
     /// (Clarabel's default, off in [`settings`] for speed), which polishes each Newton
     /// direction against the unregularised KKT matrix. Issue 13's property test found a Step 3
     /// (N = 4, δ = 49 s) whose models ended in NumericalError and InsufficientProgress; with
@@ -378,7 +380,8 @@ impl ConicSolver {
     /// is the second solve's; its time includes the first.
     pub fn solve(&mut self) -> ConicSolution {
         self.solver.solve();
-        if SolverStatus::from(self.solver.solution.status).numerical_trouble() {
+        let status = SolverStatus::from(self.solver.solution.status);
+        if status.numerical_trouble() || status == SolverStatus::AlmostSolved {
             let first = self.solver.solution.solve_time;
             let mut refined = settings();
             refined.iterative_refinement_enable = true;

@@ -59,6 +59,22 @@ pub enum PlanError {
         /// Interior-point iterations.
         iterations: u32,
     },
+    /// A convex solve's solution, rolled through the vehicle models, breaks a constraint that
+    /// the model holds hard (C1_4, C1_5/C1_6, the grid, the speed limits) by more than the
+    /// checker allows: the solver's accuracy, not the problem. The SCP retries it with a
+    /// smaller trust region, as it does a solve in numerical trouble.
+    #[error("{step}: the convex solver's solution (Clarabel status {status}) breaks {constraint} by {excess:.3e} once rolled through the vehicle models, beyond the model's margin and the checker's tolerance")]
+    Inexact {
+        /// The step whose subproblem it was.
+        step: Step,
+        /// How the solve ended.
+        status: SolverStatus,
+        /// Which hard constraint: "a length (C1_4, C1_5/C1_6 or the grid), m" or "a speed
+        /// limit, m/s".
+        constraint: &'static str,
+        /// By how much, in the constraint's unit.
+        excess: f64,
+    },
     /// A convex subproblem has no feasible point.
     #[error("{step}: the convex subproblem is infeasible (Clarabel status {status}); {}", culprit_text(.culprit))]
     ConvexInfeasible {

@@ -449,3 +449,47 @@ fn regression_a_finer_resolution_only_makes_the_plan_more_careful() {
         );
     }
 }
+
+/// Regression (issue 22's scaling run: seed 1, 20 AUVs, C1_14 made inactive): Step 1's second
+/// convex solve ended AlmostSolved, its candidate, rolled through the vehicle models, put AUV 0
+/// 150.00033 m from the USV at k = K, the SCP took that 3.3e-4 m for a tolerable violation, and
+/// the written plan failed C1_6 in `shoal check`. A reduced-accuracy solve is now refined, and a
+/// candidate that breaks a hard constraint beyond the checker's tolerance is a rejected step.
+/// Step 1 alone is planned here (the failure was in its plan).
+#[test]
+fn regression_a_reduced_accuracy_solve_breaks_no_hard_constraint() {
+    use shoal::mission::initial_state;
+    use shoal::team::TeamProblem;
+    use shoal::trajectory::Start;
+    use shoal::vehicle::{AuvModel, UsvModel};
+    let mut s = Scenario::default();
+    (s.seed, s.team.auvs) = (1, 20);
+    (s.auv.max_heading_rate, s.auv.min_heading_speed) = (10.0, 1.999);
+    let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
+    let keep_out = floor.keep_out();
+    let init = initial_state(&s, &floor, &keep_out).unwrap();
+    let start = Start {
+        usv: init.usv,
+        auvs: init.auvs,
+    };
+    let auv = AuvModel::new(&s.auv, s.horizon.dt).unwrap();
+    let usv = UsvModel {
+        dt: s.horizon.dt,
+        max_speed: s.usv.max_speed,
+    };
+    let mut p2 = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start);
+    let plan = shoal::step1::solve(&mut p2, None, &mut |_| {})
+        .expect("Step 1 plans")
+        .iterate;
+    let kk = s.horizon.steps;
+    let u = plan.usv_p[kk];
+    for (n, a) in plan.auv_p.iter().enumerate() {
+        let a = a[kk];
+        let d = ((a[0] - u[0]).powi(2) + (a[1] - u[1]).powi(2) + a[2] * a[2]).sqrt();
+        assert!(
+            d <= s.acoustic.sonar_range + shoal::check::LENGTH_TOL,
+            "AUV {n} at k = K: {d} m from the USV, d_s = {}",
+            s.acoustic.sonar_range
+        );
+    }
+}

@@ -292,6 +292,22 @@ impl<'a> TeamProblem<'a> {
         Trajectory::simulate(&self.start, usv_u, auv_u, &self.auv, &self.usv)
     }
 
+    /// The largest violations of the constraints the model holds hard, over every AUV and
+    /// step: lengths (C1_4, C1_5/C1_6, the grid bounds), metres, and speeds, m/s.
+    fn hard_excess(&self, t: &Trajectory) -> (f64, f64) {
+        let l = self.layout;
+        let (mut length, mut speed) = (0.0f64, 0.0f64);
+        for k in 1..=l.k {
+            for n in 0..l.n {
+                length = length
+                    .max(ranges::violation(self, t, n, k))
+                    .max(bounds::violation(self, t, n, k));
+            }
+            speed = speed.max(speed::violation(self, t, k));
+        }
+        (length, speed)
+    }
+
     /// Solve the window by SCvx from `guess`, handing every SCP iteration to `observer`.
     pub fn solve(
         &mut self,
@@ -360,6 +376,23 @@ impl ScpProblem for TeamProblem<'_> {
             });
         }
         let t = self.extract(&sol.x);
+        // the constraints the model holds hard (with margins of 1e-3 m and 1e-6 relative) must
+        // hold to the checker's tolerances on the re-simulated plan; a solve at reduced
+        // accuracy once broke C1_6 by 3.3e-4 m and the plan failed its check (issue 22)
+        let (length, speed) = self.hard_excess(&t);
+        if length > crate::check::LENGTH_TOL || speed > crate::check::SPEED_TOL {
+            let (constraint, excess) = if length > crate::check::LENGTH_TOL {
+                ("a length (C1_4, C1_5/C1_6 or the grid), m", length)
+            } else {
+                ("a speed limit, m/s", speed)
+            };
+            return Err(PlanError::Inexact {
+                step: self.step(),
+                status: sol.status,
+                constraint,
+                excess,
+            });
+        }
         // model merit L(x*) = ½x*ᵀPx* + qᵀx* + constant: the convex terms exact, OF1_8 and the
         // height term linearised, the slacks penalised
         let model = sol.objective + m.constant;
@@ -454,6 +487,7 @@ impl ScpProblem for TeamProblem<'_> {
 
     fn numerical_trouble(&self, e: &PlanError) -> bool {
         matches!(e, PlanError::Solver { status, .. } if status.numerical_trouble())
+            || matches!(e, PlanError::Inexact { .. })
     }
 
     fn infeasible(&self, t: &Trajectory) -> PlanError {
