@@ -11,7 +11,7 @@
 //! active, the default, or made inactive with `auv.max_heading_rate = 10` and
 //! `auv.min_heading_speed = 1.999`, so that only the SCP's own progress differs), `fast` to skip
 //! the converged runs (no gap), and any `key=value` with a dot in the key to override a
-//! scenario key as `shoal plan --set` does (`scp.momentum=false`). Every plan is checked. One
+//! scenario key as `shoal plan --set` does (`scp.momentum=true`). Every plan is checked. One
 //! CSV row per window on stdout; the medians per team size on stderr.
 
 use shoal::plan::{Plan, Stage};
