@@ -14,15 +14,8 @@
 use shoal::{mission, Planner, Scenario};
 use std::collections::BTreeMap;
 
-fn list(s: &str) -> Vec<u64> {
-    if let Some((a, b)) = s.split_once('-') {
-        let (a, b): (u64, u64) = (a.parse().expect("a-b"), b.parse().expect("a-b"));
-        return (a..=b).collect();
-    }
-    s.split(',')
-        .map(|v| v.parse().expect("a list of integers"))
-        .collect()
-}
+mod common;
+use common::list;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();

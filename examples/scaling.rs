@@ -15,17 +15,11 @@
 //! CSV row per window on stdout; the medians per team size on stderr.
 
 use shoal::plan::{Plan, Stage};
+use shoal::seafloor::Seafloor;
 use shoal::{mission, Planner, Scenario};
 
-fn list(s: &str) -> Vec<u64> {
-    if let Some((a, b)) = s.split_once('-') {
-        let (a, b): (u64, u64) = (a.parse().expect("a-b"), b.parse().expect("a-b"));
-        return (a..=b).collect();
-    }
-    s.split(',')
-        .map(|v| v.parse().expect("a list of integers"))
-        .collect()
-}
+mod common;
+use common::list;
 
 /// What one run of a window measured.
 struct Run {
@@ -42,13 +36,11 @@ struct Run {
     converged: bool,
 }
 
-fn measure(s: &Scenario) -> Result<Run, String> {
-    let (floor, _) =
-        mission::scenario_floor(s, std::path::Path::new(".")).map_err(|e| format!("floor: {e}"))?;
+fn measure(s: &Scenario, floor: &Seafloor) -> Result<Run, String> {
     let clock = std::time::Instant::now();
-    let p: Plan = Planner::new(s, &floor).run().map_err(|e| e.to_string())?;
+    let p: Plan = Planner::new(s, floor).run().map_err(|e| e.to_string())?;
     let seconds = clock.elapsed().as_secs_f64();
-    let passed = shoal::check(&p, &floor).passed();
+    let passed = shoal::check(&p, floor).passed();
     let w = &p.windows[0];
     let stages: [&Stage; 2] = [&w.step1, &w.final_];
     let ipm: Vec<usize> = stages
@@ -127,7 +119,15 @@ fn main() {
                     s.auv.max_heading_rate = 10.0;
                     s.auv.min_heading_speed = 1.999;
                 }
-                let run = match measure(&s) {
+                // one floor for both runs of the window (the tolerance does not change it)
+                let floor = match mission::scenario_floor(&s, std::path::Path::new(".")) {
+                    Ok((f, _)) => f,
+                    Err(e) => {
+                        println!("{n},{active},{seed},error,\"floor: {e}\"");
+                        continue;
+                    }
+                };
+                let run = match measure(&s, &floor) {
                     Ok(r) => r,
                     Err(e) => {
                         println!("{n},{active},{seed},error,\"{e}\"");
@@ -139,7 +139,7 @@ fn main() {
                 } else {
                     s.scp.tolerance = 1e-7;
                     s.scp.max_iterations = 300;
-                    measure(&s).ok()
+                    measure(&s, &floor).ok()
                 };
                 let mut ipm: Vec<f64> = run.ipm.iter().map(|&i| i as f64).collect();
                 let ipm_median = median(&mut ipm);

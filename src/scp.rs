@@ -282,13 +282,12 @@ where
                 }
                 previous = Some(std::mem::replace(&mut reference, candidate));
                 reference_eval = candidate_eval;
-                if reference_eval.max_violation <= settings.feasibility_tol
-                    && best
-                        .as_ref()
-                        .map_or(true, |(_, e)| reference_eval.objective < e.objective)
-                {
-                    best = Some((reference.clone(), reference_eval));
-                }
+                keep_if_best(
+                    &mut best,
+                    &reference,
+                    reference_eval,
+                    settings.feasibility_tol,
+                );
             } else {
                 momentum = 1.0;
                 good_run = false;
@@ -325,13 +324,12 @@ where
             previous = Some(std::mem::replace(&mut reference, candidate));
             reference_eval = candidate_eval;
             have_feasible_reference = true;
-            if reference_eval.max_violation <= settings.feasibility_tol
-                && best
-                    .as_ref()
-                    .map_or(true, |(_, e)| reference_eval.objective < e.objective)
-            {
-                best = Some((reference.clone(), reference_eval));
-            }
+            keep_if_best(
+                &mut best,
+                &reference,
+                reference_eval,
+                settings.feasibility_tol,
+            );
         }
         if !record.accepted {
             good_run = false;
@@ -377,6 +375,18 @@ where
     }
 }
 
+/// Keep `x` as the best accepted iterate if it meets every constraint (within `tol`) and its
+/// objective is the lowest so far.
+fn keep_if_best<X: Clone>(best: &mut Option<(X, Evaluation)>, x: &X, e: Evaluation, tol: f64) {
+    if e.max_violation <= tol
+        && best
+            .as_ref()
+            .map_or(true, |(_, b)| e.objective < b.objective)
+    {
+        *best = Some((x.clone(), e));
+    }
+}
+
 /// The radius after a rejected step (ρ < RHO1) of length `step` (None: unknown): half the
 /// step, or half the radius if the step reached it, but at most `MAX_SHRINK`-fold at once.
 fn shrunk(radius: f64, step: Option<f64>) -> f64 {
@@ -396,6 +406,34 @@ mod tests {
     use super::*;
     use crate::conic::{ConicSolution, ConicSolver, Pattern, Triplets};
     use clarabel::solver::SupportedConeT::*;
+
+    /// Solve min ½xᵀPx + qᵀx s.t. Ax + s = b, s ∈ `cones` over `n` variables in the solver of
+    /// `slot`, built at the first call and updated (same pattern) at the later ones.
+    fn solve_in(
+        slot: &mut Option<ConicSolver>,
+        n: usize,
+        (p, q): (&Triplets, &[f64]),
+        (a, b): (&Triplets, &[f64]),
+        cones: &[clarabel::solver::SupportedConeT<f64>],
+    ) -> ConicSolution {
+        let s = match slot {
+            Some(s) => {
+                s.update(&p.vals, q, &a.vals, b).unwrap();
+                s
+            }
+            None => slot.insert(
+                ConicSolver::new(
+                    Pattern::new(n, n, p),
+                    q,
+                    Pattern::new(b.len(), n, a),
+                    b,
+                    cones,
+                )
+                .unwrap(),
+            ),
+        };
+        s.solve()
+    }
 
     /// min x² + y² s.t. the nonconvex constraint x·y ≥ 1 (so g = 1 − xy ≤ 0), from (3, 0.5).
     /// The optimum is x = y = 1, objective 2.
@@ -444,23 +482,7 @@ mod tests {
             let b = [-1.0 - r[0] * r[1], 0.0, radius, -r[0], -r[1]];
             let q = [0.0, 0.0, penalty];
             let cones = [NonnegativeConeT(2), SecondOrderConeT(3)];
-            let s = match &mut self.solver {
-                Some(s) => {
-                    s.update(&p.vals, &q, &a.vals, &b).unwrap();
-                    s
-                }
-                None => self.solver.insert(
-                    ConicSolver::new(
-                        Pattern::new(3, 3, &p),
-                        &q,
-                        Pattern::new(5, 3, &a),
-                        &b,
-                        &cones,
-                    )
-                    .unwrap(),
-                ),
-            };
-            let sol: ConicSolution = s.solve();
+            let sol = solve_in(&mut self.solver, 3, (&p, &q), (&a, &b), &cones);
             assert!(sol.usable());
             let x = [sol.x[0], sol.x[1]];
             let merit = sol.x[0].powi(2) + sol.x[1].powi(2) + penalty * sol.x[2];
@@ -570,23 +592,7 @@ mod tests {
             a.push(2, 1, -1.0);
             let b = [radius, -r[0], -r[1]];
             let cones = [SecondOrderConeT(3)];
-            let s = match &mut self.solver {
-                Some(s) => {
-                    s.update(&p.vals, &q, &a.vals, &b).unwrap();
-                    s
-                }
-                None => self.solver.insert(
-                    ConicSolver::new(
-                        Pattern::new(2, 2, &p),
-                        &q,
-                        Pattern::new(3, 2, &a),
-                        &b,
-                        &cones,
-                    )
-                    .unwrap(),
-                ),
-            };
-            let sol = s.solve();
+            let sol = solve_in(&mut self.solver, 2, (&p, &q), (&a, &b), &cones);
             assert!(sol.usable());
             let x = [sol.x[0], sol.x[1]];
             let rr = r[0] * r[0] + r[1] * r[1];

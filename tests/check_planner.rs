@@ -458,26 +458,12 @@ fn regression_a_finer_resolution_only_makes_the_plan_more_careful() {
 /// Step 1 alone is planned here (the failure was in its plan).
 #[test]
 fn regression_a_reduced_accuracy_solve_breaks_no_hard_constraint() {
-    use shoal::mission::initial_state;
-    use shoal::team::TeamProblem;
-    use shoal::trajectory::Start;
-    use shoal::vehicle::{AuvModel, UsvModel};
     let mut s = Scenario::default();
     (s.seed, s.team.auvs) = (1, 20);
     (s.auv.max_heading_rate, s.auv.min_heading_speed) = (10.0, 1.999);
     let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
     let keep_out = floor.keep_out();
-    let init = initial_state(&s, &floor, &keep_out).unwrap();
-    let start = Start {
-        usv: init.usv,
-        auvs: init.auvs,
-    };
-    let auv = AuvModel::new(&s.auv, s.horizon.dt).unwrap();
-    let usv = UsvModel {
-        dt: s.horizon.dt,
-        max_speed: s.usv.max_speed,
-    };
-    let mut p2 = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start);
+    let mut p2 = shoal::team::TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
     let plan = shoal::step1::solve(&mut p2, None, &mut |_| {})
         .expect("Step 1 plans")
         .iterate;

@@ -147,11 +147,9 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
 
 #[cfg(test)]
 mod tests {
-    use crate::mission::{initial_state, scenario_floor};
+    use crate::mission::scenario_floor;
     use crate::scenario::{Scenario, WeightScaling};
     use crate::team::TeamProblem;
-    use crate::trajectory::Start;
-    use crate::vehicle::{AuvModel, UsvModel};
 
     /// How far the USV goes in the first reference of the default scenario with `n` AUVs.
     fn guessed_distance(n: usize, scaling: WeightScaling) -> f64 {
@@ -171,17 +169,7 @@ mod tests {
         let s = s.clone();
         let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
         let keep_out = floor.keep_out();
-        let init = initial_state(&s, &floor, &keep_out).unwrap();
-        let start = Start {
-            usv: init.usv,
-            auvs: init.auvs,
-        };
-        let auv = AuvModel::new(&s.auv, s.horizon.dt).unwrap();
-        let usv = UsvModel {
-            dt: s.horizon.dt,
-            max_speed: s.usv.max_speed,
-        };
-        let p = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start);
+        let p = TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
         let run = |t: &crate::trajectory::Trajectory| {
             let (a, b) = (t.usv_p[0], t.usv_p[s.horizon.steps]);
             (b[0] - a[0]).hypot(b[1] - a[1])
@@ -228,19 +216,10 @@ mod tests {
         s.horizon.steps = 5;
         let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
         let keep_out = floor.keep_out();
-        let init = initial_state(&s, &floor, &keep_out).unwrap();
-        let start = Start {
-            usv: init.usv,
-            auvs: init.auvs,
-        };
-        let auv = AuvModel::new(&s.auv, s.horizon.dt).unwrap();
-        let usv = UsvModel {
-            dt: s.horizon.dt,
-            max_speed: s.usv.max_speed,
-        };
-        let o = start.usv;
+        let p = TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
+        let o = p.start().usv;
         let track = [[o[0] + 2000.0, o[1] - 500.0], [o[0] + 2000.0, o[1] + 500.0]];
-        let mut p = TeamProblem::new(&s, &floor, &keep_out, auv, usv, start).with_track(&track);
+        let mut p = p.with_track(&track);
         let reference = p.initial_guess(None);
         let radius = 1.0;
         let (candidate, _, _) = p.solve_model(&reference, radius, 1e3).unwrap();

@@ -116,6 +116,26 @@ impl<'a> TeamProblem<'a> {
         }
     }
 
+    /// The first window of `scenario` over `floor` (keep-out field `keep_out`): the vehicle
+    /// models of the scenario, from its initial state (`mission::initial_state`).
+    pub fn first_window(
+        scenario: &'a Scenario,
+        floor: &'a Seafloor,
+        keep_out: &'a Seafloor,
+    ) -> Result<TeamProblem<'a>, PlanError> {
+        let auv = AuvModel::new(&scenario.auv, scenario.horizon.dt)?;
+        let usv = UsvModel {
+            dt: scenario.horizon.dt,
+            max_speed: scenario.usv.max_speed,
+        };
+        let init = crate::mission::initial_state(scenario, floor, keep_out)?;
+        let start = Start {
+            usv: init.usv,
+            auvs: init.auvs,
+        };
+        Ok(TeamProblem::new(scenario, floor, keep_out, auv, usv, start))
+    }
+
     /// The same window with the USV's path before it, `earlier`: with `usv.away_from =
     /// "track"` OF1_8 then rewards the distance of P_USV\[K\] from the nearest point of that
     /// path or of this window's start; with `"window"` the path is ignored (the paper).
