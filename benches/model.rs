@@ -3,6 +3,10 @@
 //! Each measured call updates the solver's data and solves (the symbolic factorisation is kept,
 //! as in every SCP iteration after the first). Run: cargo bench --bench model.
 //!
+//! Before measuring, each model's factorisation size is printed (`conic::fill`: nonzeros of the
+//! KKT matrix and of L, multiply-adds per factorisation): the fill is what an interior-point
+//! iteration costs.
+//!
 //! A window needs at least one solve of each model, so these medians are a lower bound on a
 //! window's time with Clarabel (BENCHMARKS.md, "What one convex solve costs").
 
@@ -27,11 +31,16 @@ fn measure(
     let (_, _, first) = problem
         .solve_model(reference, radius, penalty)
         .expect("model");
+    let fill = problem.fill().expect("solved once").expect("fill");
     eprintln!(
-        "{name}: {} variables, {} interior-point iterations, {:?}",
+        "{name}: {} variables, {} interior-point iterations, {:?}; KKT {} nonzeros, L {} \
+         nonzeros, {:.2e} multiply-adds per factorisation",
         problem.layout().variables(),
         first.iterations,
-        first.status
+        first.status,
+        fill.kkt_nonzeros,
+        fill.factor_nonzeros,
+        fill.multiply_adds
     );
     group.bench_function(name, |b| {
         b.iter(|| {
@@ -72,6 +81,7 @@ fn model(c: &mut Criterion) {
             &b.floor,
             s.acoustic.resolution,
             s.acoustic.sonar_range,
+            s.acoustic.graph,
         );
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
         let mut p5 = new_problem().with_links(links);

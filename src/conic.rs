@@ -269,11 +269,98 @@ pub fn settings() -> DefaultSettings<f64> {
         .expect("static Clarabel settings are valid")
 }
 
+/// The size of the LDLᵀ factorisation of a model's KKT matrix (QDLDL's symbolic analysis
+/// under its AMD ordering, as Clarabel factorises it): what one interior-point iteration costs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fill {
+    /// Nonzeros of the KKT matrix's upper triangle, [P A'; A −H], H the cones' blocks.
+    pub kkt_nonzeros: usize,
+    /// Nonzeros of L (strictly lower).
+    pub factor_nonzeros: usize,
+    /// Σ over L's columns of (nonzeros)²: the multiply-adds of one numeric factorisation.
+    pub multiply_adds: f64,
+}
+
+/// [`Fill`] of the KKT matrix of P (n × n, upper triangle used), A (m × n) and `cones`: the
+/// pattern of Clarabel's KKT system, second-order cones of dimension ≤ 4 as dense blocks (as
+/// Clarabel stores them; every cone of shoal's models is that small) and larger ones as their
+/// diagonal (Clarabel's sparse expansion adds two columns per cone, not counted).
+pub fn fill(
+    p: &CscMatrix<f64>,
+    a: &CscMatrix<f64>,
+    cones: &[SupportedConeT<f64>],
+) -> Result<Fill, ConicError> {
+    use clarabel::qdldl::{QDLDLFactorisation, QDLDLSettingsBuilder};
+    let (n, m) = (p.n, a.m);
+    let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n + m];
+    for (j, col) in cols.iter_mut().enumerate().take(n) {
+        col.extend(
+            (p.colptr[j]..p.colptr[j + 1])
+                .map(|i| p.rowval[i])
+                .filter(|&i| i <= j),
+        );
+        col.push(j);
+    }
+    for j in 0..n {
+        for idx in a.colptr[j]..a.colptr[j + 1] {
+            cols[n + a.rowval[idx]].push(j);
+        }
+    }
+    let mut row = n;
+    for cone in cones {
+        let (d, dense) = match *cone {
+            SupportedConeT::SecondOrderConeT(d) => (d, d <= 4),
+            _ => (cone_dim(cone), false),
+        };
+        for i in 0..d {
+            let first = if dense { row } else { row + i };
+            cols[row + i].extend(first..=row + i);
+        }
+        row += d;
+    }
+    let (mut colptr, mut rowval) = (vec![0], Vec::new());
+    for col in cols.iter_mut() {
+        col.sort_unstable();
+        col.dedup();
+        rowval.extend_from_slice(col);
+        colptr.push(rowval.len());
+    }
+    let nnz = rowval.len();
+    let kkt = CscMatrix::new(n + m, n + m, colptr, rowval, vec![1.0; nnz]);
+    let signs = (0..n + m).map(|i| if i < n { 1 } else { -1 }).collect();
+    let settings = QDLDLSettingsBuilder::default()
+        .logical(true)
+        .Dsigns(signs)
+        .build()
+        .map_err(|e| ConicError::Setup(e.to_string()))?;
+    let f = QDLDLFactorisation::<f64>::new(&kkt, Some(settings))
+        .map_err(|e| ConicError::Setup(format!("{e:?}")))?;
+    let l = &f.L;
+    let multiply_adds = (0..l.n)
+        .map(|j| ((l.colptr[j + 1] - l.colptr[j]) as f64).powi(2))
+        .sum();
+    Ok(Fill {
+        kkt_nonzeros: nnz,
+        factor_nonzeros: l.colptr[l.n],
+        multiply_adds,
+    })
+}
+
+/// The dimension of a cone.
+fn cone_dim(cone: &SupportedConeT<f64>) -> usize {
+    use SupportedConeT::*;
+    match *cone {
+        ZeroConeT(d) | NonnegativeConeT(d) | SecondOrderConeT(d) => d,
+        _ => 0,
+    }
+}
+
 /// A Clarabel solver over fixed P and A patterns.
 pub struct ConicSolver {
     solver: DefaultSolver<f64>,
     p: Pattern,
     a: Pattern,
+    cones: Vec<SupportedConeT<f64>>,
     /// x = scale ∘ x̃ (all ones without `with_scale`).
     scale: Vec<f64>,
 }
@@ -293,6 +380,7 @@ impl ConicSolver {
             solver,
             p,
             a,
+            cones: cones.to_vec(),
             scale,
         })
     }
@@ -320,8 +408,14 @@ impl ConicSolver {
             solver,
             p,
             a,
+            cones: cones.to_vec(),
             scale,
         })
+    }
+
+    /// The [`Fill`] of this model's factorisation.
+    pub fn fill(&self) -> Result<Fill, ConicError> {
+        fill(&self.p.matrix, &self.a.matrix, &self.cones)
     }
 
     /// New values for P (triplet order), q, A (triplet order) and b. Patterns must not change.
@@ -407,6 +501,30 @@ impl ConicSolver {
 mod tests {
     use super::*;
     use clarabel::solver::SupportedConeT::*;
+
+    /// Two variables and one row coupling them: a star with the row at its centre, which AMD
+    /// eliminates last, so L has only the two original entries.
+    #[test]
+    fn fill_of_a_star_has_no_fill_in() {
+        let p = CscMatrix::new(2, 2, vec![0, 1, 2], vec![0, 1], vec![1.0, 1.0]);
+        let a = CscMatrix::new(1, 2, vec![0, 1, 2], vec![0, 0], vec![1.0, 1.0]);
+        let f = fill(&p, &a, &[NonnegativeConeT(1)]).unwrap();
+        assert_eq!(f.kkt_nonzeros, 5);
+        assert_eq!(f.factor_nonzeros, 2);
+        assert_eq!(f.multiply_adds, 2.0);
+    }
+
+    /// One variable in three rows of a second-order cone: the cone's block is dense, so the
+    /// 4 × 4 KKT matrix and its L are full (6 entries below the diagonal; 3² + 2² + 1²).
+    #[test]
+    fn fill_counts_a_small_cone_as_a_dense_block() {
+        let p = CscMatrix::new(1, 1, vec![0, 1], vec![0], vec![1.0]);
+        let a = CscMatrix::new(3, 1, vec![0, 3], vec![0, 1, 2], vec![1.0; 3]);
+        let f = fill(&p, &a, &[SecondOrderConeT(3)]).unwrap();
+        assert_eq!(f.kkt_nonzeros, 10);
+        assert_eq!(f.factor_nonzeros, 6);
+        assert_eq!(f.multiply_adds, 14.0);
+    }
 
     #[test]
     fn pattern_sums_duplicates_and_maps_slots() {

@@ -264,6 +264,7 @@ fn run(
             floor,
             s.acoustic.resolution,
             s.acoustic.sonar_range,
+            s.acoustic.graph,
         );
         progress(Progress::Step2 {
             window: w,

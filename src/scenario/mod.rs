@@ -84,6 +84,24 @@ pub struct Acoustic {
     /// Largest number of P5 solves per window in the line-of-sight loop (Algorithm 1, lines
     /// 17–22).
     pub los_rounds: usize,
+    /// How Step 2's P4 picks the A2A chain: one per window in cross-track order (ours, the
+    /// default), the longest per window, or the longest per step (the paper).
+    pub graph: A2aGraph,
+}
+
+/// How P4 (Step 2) picks the A2A graph of a window (`step2::p4_window` says why).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum A2aGraph {
+    /// The paper: the longest Hamiltonian path of each step's positions; the chain's order may
+    /// change from one step to the next.
+    PerStep,
+    /// One chain for the whole window: the Hamiltonian path with the fewest (step, edge) pairs
+    /// out of range or blocked, and the longest of those summed over the window's steps.
+    Window,
+    /// One chain for the whole window, in the order of the AUVs' cross-track offsets from the
+    /// USV's track (each link joins neighbouring lanes); ours, the default.
+    Lanes,
 }
 
 /// How the AUV dynamics are discretised over a step of δ seconds.
@@ -349,6 +367,7 @@ impl Default for Acoustic {
             resolution: 5.0,  // 𝓛_r: 5 m, a fifth of the synthetic grid cell
             los_shrink: 15.0, // ours: half of d_t per round
             los_rounds: 5,
+            graph: A2aGraph::Lanes,
         }
     }
 }

@@ -6,7 +6,8 @@
 //! expects, and to generate the template, so that no key or default value is written twice.
 
 use super::{
-    AwayFrom, DepthObjective, Discretisation, Initial, Scenario, UsvObjective, WeightScaling,
+    A2aGraph, AwayFrom, DepthObjective, Discretisation, Initial, Scenario, UsvObjective,
+    WeightScaling,
 };
 use crate::seafloor::Values;
 use toml_edit::{DocumentMut, Item, TableLike, Value};
@@ -234,6 +235,11 @@ pub(crate) fn enum_values(key: &str) -> Option<Vec<String>> {
     }
     match key {
         "auv.discretisation" => Some(names(&[Discretisation::Zoh, Discretisation::Euler])),
+        "acoustic.graph" => Some(names(&[
+            A2aGraph::Lanes,
+            A2aGraph::Window,
+            A2aGraph::PerStep,
+        ])),
         "usv.objective" => Some(names(&[UsvObjective::Away, UsvObjective::Destination])),
         "usv.away_from" => Some(names(&[AwayFrom::Track, AwayFrom::Window])),
         "weights.of1_2" => Some(names(&[DepthObjective::Height, DepthObjective::Depth])),

@@ -51,6 +51,12 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Largest number of P5 solves per window in the line-of-sight loop (Algorithm 1, \
              lines 17–22). 1 to 100."
         }
+        "acoustic.graph" => {
+            "How Step 2 (P4) picks the A2A chain: \"lanes\" (ours: one chain per window, the \
+             AUVs in cross-track order, each link joining neighbouring lanes), \"window\" \
+             (ours: one chain per window, the longest summed over its steps) or \"per_step\" \
+             (the paper: the longest Hamiltonian path of each step)."
+        }
         "auv" => {
             "AUV limits, and the coefficients of the simplified dynamics, eqs. (5)–(8): \
              E' = diag{γ_vx/(m − γ_v̇x), γ_vz/(m − γ_v̇z), γ_ωz/J_z}. Defaults: REMUS 100 \

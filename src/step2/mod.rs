@@ -17,8 +17,10 @@
 
 pub mod p3_a2u;
 pub mod p4_hamiltonian;
+pub mod p4_window;
 
 use crate::plan::Graph;
+use crate::scenario::A2aGraph;
 use crate::seafloor::Seafloor;
 use crate::trajectory::Trajectory;
 use p3_a2u::a2u_link;
@@ -26,8 +28,14 @@ use p4_hamiltonian::longest_path_avoiding;
 use std::time::Instant;
 
 /// P3 and P4 at every step k = 0..=K of `t`, over `floor` sampled at `resolution` (𝓛_r), with
-/// sonar range d_s = `sonar_range`.
-pub fn solve(t: &Trajectory, floor: &Seafloor, resolution: f64, sonar_range: f64) -> Graph {
+/// sonar range d_s = `sonar_range`; P4 per step or once for the window (`policy`).
+pub fn solve(
+    t: &Trajectory,
+    floor: &Seafloor,
+    resolution: f64,
+    sonar_range: f64,
+    policy: A2aGraph,
+) -> Graph {
     let clock = Instant::now();
     let steps = t.usv_p.len();
     let mut g = Graph {
@@ -36,22 +44,37 @@ pub fn solve(t: &Trajectory, floor: &Seafloor, resolution: f64, sonar_range: f64
         exact: true,
         solve_time_s: 0.0,
     };
+    // an A2A edge a–b that cannot carry a link: longer than d_s, or across an obstacle cell
+    let blocked = |a: [f64; 3], b: [f64; 3]| {
+        dist2(a, b).sqrt() > sonar_range
+            || floor.has_obstacles()
+                && matches!(floor.segment_obstacle(a, b, resolution), Ok(Some(_)))
+    };
+    let blocked_at = |k: usize, i: usize, j: usize| blocked(t.auv_p[i][k], t.auv_p[j][k]);
     for k in 0..steps {
         let points: Vec<[f64; 3]> = t.auv_p.iter().map(|p| p[k]).collect();
         // a team has at least one AUV (scenario validation), so there is a nearest one
         g.a2u.push(a2u_link(t.usv_p[k], &points).unwrap_or(0));
-        let blocked = |i: usize, j: usize| {
-            let (a, b) = (points[i], points[j]);
-            let length =
-                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-            length > sonar_range
-                || floor.has_obstacles()
-                    && matches!(floor.segment_obstacle(a, b, resolution), Ok(Some(_)))
-        };
-        let path = longest_path_avoiding(&points, blocked);
-        g.exact &= path.exact;
-        g.a2a.push(path.edges());
+        if policy == A2aGraph::PerStep {
+            let path = longest_path_avoiding(&points, |i, j| blocked(points[i], points[j]));
+            g.exact &= path.exact;
+            g.a2a.push(path.edges());
+        }
+    }
+    let chain = match policy {
+        A2aGraph::PerStep => None,
+        A2aGraph::Window => Some(p4_window::longest(t, &blocked_at)),
+        A2aGraph::Lanes => Some(p4_window::lanes(t, &blocked_at)),
+    };
+    if let Some(path) = chain {
+        g.exact = path.exact;
+        g.a2a = vec![path.edges(); steps];
     }
     g.solve_time_s = clock.elapsed().as_secs_f64();
     g
+}
+
+/// ‖a − b‖².
+pub(crate) fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
 }

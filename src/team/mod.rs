@@ -174,6 +174,12 @@ impl<'a> TeamProblem<'a> {
         }
     }
 
+    /// The [`Fill`](crate::conic::Fill) of the convex model's factorisation (None before the
+    /// first solve builds the solver).
+    pub fn fill(&self) -> Option<Result<crate::conic::Fill, crate::conic::ConicError>> {
+        self.solver.as_ref().map(ConicSolver::fill)
+    }
+
     /// Where each variable sits in the solver's vector.
     pub fn layout(&self) -> Layout {
         self.layout

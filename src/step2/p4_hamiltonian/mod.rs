@@ -82,6 +82,23 @@ pub fn longest_path_avoiding(
     }
 }
 
+/// The heaviest Hamiltonian path in `length2(i, j)` (i < j; any sign) among those with the
+/// fewest `blocked(i, j)` counts summed over their edges: P4 over a window (`p4_window`), where
+/// the count is the steps at which edge i–j cannot carry a link. The recorded weight is the sum
+/// of `length2` over the path's edges.
+pub fn longest_path_over(
+    n: usize,
+    length2: impl Fn(usize, usize) -> f64,
+    blocked: impl Fn(usize, usize) -> usize,
+) -> HamiltonianPath {
+    let w = Weights::over(n, length2, blocked);
+    if n <= EXACT_MAX {
+        held_karp(&w)
+    } else {
+        heuristic(&w)
+    }
+}
+
 /// `true` iff `edges` form a Hamiltonian path on nodes 0..n: exactly n − 1 distinct edges with
 /// valid, distinct endpoints, every degree ≤ 2 and no cycle (hence connected). n = 0 and n = 1
 /// accept only the empty edge list.
@@ -130,24 +147,36 @@ impl Weights {
         Self::avoiding(p, |_, _| false)
     }
     fn avoiding(p: &[[f64; 3]], blocked: impl Fn(usize, usize) -> bool) -> Self {
-        let n = p.len();
+        Self::over(
+            p.len(),
+            |i, j| (0..3).map(|c| (p[i][c] - p[j][c]).powi(2)).sum::<f64>(),
+            |i, j| usize::from(blocked(i, j)),
+        )
+    }
+    /// Weights `length2(i, j)` (of any sign) less a penalty per count of `blocked(i, j)`
+    /// (i < j), N·(largest |weight| + 1) each: fewest blocked counts first.
+    fn over(
+        n: usize,
+        length2: impl Fn(usize, usize) -> f64,
+        blocked: impl Fn(usize, usize) -> usize,
+    ) -> Self {
         let mut d = vec![0.0; n * n];
         let mut max = 0.0f64;
         for i in 0..n {
-            for j in 0..n {
-                let v = (0..3).map(|c| (p[i][c] - p[j][c]).powi(2)).sum::<f64>();
+            for j in i + 1..n {
+                let v = length2(i, j);
                 d[i * n + j] = v;
-                max = max.max(v);
+                d[j * n + i] = v;
+                max = max.max(v.abs());
             }
         }
         let penalty = n as f64 * (max + 1.0);
         let mut w = d.clone();
         for i in 0..n {
             for j in i + 1..n {
-                if blocked(i, j) {
-                    w[i * n + j] -= penalty;
-                    w[j * n + i] -= penalty;
-                }
+                let count = blocked(i, j) as f64;
+                w[i * n + j] -= penalty * count;
+                w[j * n + i] -= penalty * count;
             }
         }
         Weights { n, w, d, max }
