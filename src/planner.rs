@@ -243,7 +243,8 @@ fn run(
         // Step 1 (P2), line 9
         let clock = Instant::now();
         let p2 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone());
-        let mut p2 = p2.with_track(&track);
+        let more = w + 1 < s.windows; // another window follows: the terminal margin
+        let mut p2 = p2.with_track(&track).with_terminal(more);
         let mut trace = Vec::new();
         let out1 = step1::solve(&mut p2, heading, &mut |it| {
             trace.push(iteration_record(it));
@@ -274,7 +275,7 @@ fn run(
         let clock = Instant::now();
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
         let p5 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone()).with_links(links);
-        let mut p5 = p5.with_track(&track);
+        let mut p5 = p5.with_track(&track).with_terminal(more);
         let mut trace = Vec::new();
         let out3 = step3::solve(&mut p5, &out1.iterate, &mut |it| {
             trace.push(iteration_record(it));

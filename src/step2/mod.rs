@@ -1,6 +1,8 @@
 //! Step 2 of Section IV-A: the acoustic graph of every step, from Step 1's positions
 //! (Algorithm 1, lines 13–16): P3 picks the A2U link (the AUV nearest the USV, `p3_a2u`), P4
-//! the A2A graph (the longest Hamiltonian path, `p4_hamiltonian`).
+//! the A2A graph, a Hamiltonian path: by default one chain for the window in lane order
+//! (`p4_window`, departure documented there), or the paper's longest path of each step
+//! (`p4_hamiltonian`, `acoustic.graph = "per_step"`).
 //!
 //! Departure: over a grid with obstacles, P4 avoids A2A edges that cross an obstacle cell
 //! (NODATA or land, `Seafloor::segment_obstacle`): among the Hamiltonian paths with the fewest
@@ -51,24 +53,40 @@ pub fn solve(
                 && matches!(floor.segment_obstacle(a, b, resolution), Ok(Some(_)))
     };
     let blocked_at = |k: usize, i: usize, j: usize| blocked(t.auv_p[i][k], t.auv_p[j][k]);
-    for k in 0..steps {
-        let points: Vec<[f64; 3]> = t.auv_p.iter().map(|p| p[k]).collect();
-        // a team has at least one AUV (scenario validation), so there is a nearest one
-        g.a2u.push(a2u_link(t.usv_p[k], &points).unwrap_or(0));
-        if policy == A2aGraph::PerStep {
-            let path = longest_path_avoiding(&points, |i, j| blocked(points[i], points[j]));
-            g.exact &= path.exact;
-            g.a2a.push(path.edges());
-        }
-    }
     let chain = match policy {
         A2aGraph::PerStep => None,
         A2aGraph::Window => Some(p4_window::longest(t, &blocked_at)),
         A2aGraph::Lanes => Some(p4_window::lanes(t, &blocked_at)),
     };
-    if let Some(path) = chain {
+    if let Some(path) = &chain {
         g.exact = path.exact;
-        g.a2a = vec![path.edges(); steps];
+    }
+    for k in 0..steps {
+        let points: Vec<[f64; 3]> = t.auv_p.iter().map(|p| p[k]).collect();
+        // a team has at least one AUV (scenario validation), so there is a nearest one
+        g.a2u.push(a2u_link(t.usv_p[k], &points).unwrap_or(0));
+        let count =
+            |edges: &[[usize; 2]]| edges.iter().filter(|e| blocked_at(k, e[0], e[1])).count();
+        // the window's chain, unless an edge of it cannot carry a link at this step (the first
+        // steps of a later window, whose positions the last window's momentum fixes) and the
+        // step's own P4 path has fewer such edges
+        let window = chain.as_ref().map(|c| c.edges());
+        let clear = window.as_ref().is_some_and(|w| count(w) == 0);
+        let edges = match window {
+            Some(w) if clear => w,
+            _ => {
+                let path = longest_path_avoiding(&points, |i, j| blocked(points[i], points[j]));
+                let own = path.edges();
+                match window {
+                    Some(w) if count(&w) <= count(&own) => w,
+                    _ => {
+                        g.exact &= path.exact;
+                        own
+                    }
+                }
+            }
+        };
+        g.a2a.push(edges);
     }
     g.solve_time_s = clock.elapsed().as_secs_f64();
     g

@@ -68,6 +68,10 @@ pub(super) fn assemble(
     keep_out::los_rows(p, r, &mut m)?; // Step 3, over every grid
     let pieces = heading::pieces(p, r);
     heading::rows(p, r, &pieces, &mut m);
+    heading::shared_rows(p, &pieces, &mut m);
+    for n in 0..nn {
+        bounds::terminal(p, &mut m, n, &ext);
+    }
     links::lower_rows(p, r, &mut m); // Step 3 only
     for n in 0..nn {
         for k in 1..=kk {

@@ -287,17 +287,39 @@ pub(super) fn cones(p: &TeamProblem, pieces: &[Vec<Piece>], m: &mut Assembly) {
             });
             m.a.push(row, l.heading_slack(n, k), if after { -1.0 } else { 0.0 });
             if k < l.k {
-                m.a.push(
-                    row,
-                    l.heading_slack(n, k + 1),
-                    if before { -1.0 } else { 0.0 },
-                );
+                // when both pairs keep V[k] slow, the cone holds pair k's slack and
+                // `shared_rows` makes pair k + 1's at least as large
+                let own = before && !after;
+                m.a.push(row, l.heading_slack(n, k + 1), if own { -1.0 } else { 0.0 });
             }
             for i in 0..2 {
                 let row = m.row(0.0);
                 m.a.push(row, l.auv_v(n, k) + i, 1.0);
             }
             m.cones.push(SecondOrderConeT(3));
+        }
+    }
+}
+
+/// Where both pairs (k − 1, k) and (k, k + 1) keep V\[k\] slow (`SlowAfter` then
+/// `SlowBefore`), one cone bounds ‖V\[k\]‖ by v_min plus pair k's slack ν_k, and the row
+/// ν_k − ν_{k+1} ≤ 0 (nonnegative cone) charges pair k + 1 as much: the true merit counts the
+/// excess ‖V\[k\]‖ − v_min in both pairs, and a model that charged it once (one cone with
+/// ν_k + ν_{k+1}) predicted a decrease that no step could make. The SCP then shrank its trust
+/// region to nothing and named a constraint that "cannot hold" (issue 22's lanes chain found
+/// it: N = 5, seed 5, window 7 of 10, a predicted decrease of 3 251 at every radius down to
+/// 2 mm). One row per AUV and step k < K, padding (`INACTIVE`) elsewhere.
+pub(super) fn shared_rows(p: &TeamProblem, pieces: &[Vec<Piece>], m: &mut Assembly) {
+    let l = p.layout;
+    for n in 0..l.n {
+        for k in 1..l.k {
+            let both = pieces[n][k - 1] == Piece::SlowAfter && pieces[n][k] == Piece::SlowBefore;
+            let c = if both { 1.0 } else { 0.0 };
+            // an unused row is padding (0 ≤ 1), never 0 ≤ 0, which leaves the interior-point
+            // method no strictly feasible slack
+            let row = m.row(if both { 0.0 } else { INACTIVE });
+            m.a.push(row, l.heading_slack(n, k), c);
+            m.a.push(row, l.heading_slack(n, k + 1), -c);
         }
     }
 }

@@ -78,6 +78,8 @@ pub struct TeamProblem<'a> {
     heading: HeadingRule,
     /// P5's planned links and their bands (None for P2).
     links: Option<LinkSet>,
+    /// The terminal margin (`bounds`): a window that another follows.
+    terminal: bool,
     /// The points OF1_8 ("away") measures from: the USV's earlier path, then this window's
     /// start (only the start unless `with_track`).
     track: Vec<[f64; 2]>,
@@ -112,6 +114,7 @@ impl<'a> TeamProblem<'a> {
             layout,
             heading: HeadingRule::of(scenario),
             links: None,
+            terminal: false,
             solver: None,
         }
     }
@@ -172,6 +175,14 @@ impl<'a> TeamProblem<'a> {
         } else {
             Step::One
         }
+    }
+
+    /// The same window with the terminal margin of `bounds` (for a window that another
+    /// follows): every AUV ends where it can slow below v_min on the grid in the next window's
+    /// first step.
+    pub fn with_terminal(mut self, terminal: bool) -> TeamProblem<'a> {
+        self.terminal = terminal;
+        self
     }
 
     /// The [`Fill`](crate::conic::Fill) of the convex model's factorisation (None before the
