@@ -84,8 +84,8 @@ pub struct Acoustic {
     /// Largest number of P5 solves per window in the line-of-sight loop (Algorithm 1, lines
     /// 17–22).
     pub los_rounds: usize,
-    /// How Step 2's P4 picks the A2A chain: one per window in cross-track order (ours, the
-    /// default), the longest per window, or the longest per step (the paper).
+    /// How Step 2's P4 picks the A2A chain: the longest per step (the paper, the default), one
+    /// per window in cross-track order, or the longest per window.
     pub graph: A2aGraph,
 }
 
@@ -93,14 +93,14 @@ pub struct Acoustic {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum A2aGraph {
-    /// The paper: the longest Hamiltonian path of each step's positions; the chain's order may
-    /// change from one step to the next.
+    /// The paper (the default): the longest Hamiltonian path of each step's positions; the
+    /// chain's order may change from one step to the next.
     PerStep,
     /// One chain for the whole window: the Hamiltonian path with the fewest (step, edge) pairs
     /// out of range or blocked, and the longest of those summed over the window's steps.
     Window,
     /// One chain for the whole window, in the order of the AUVs' cross-track offsets from the
-    /// USV's track (each link joins neighbouring lanes); ours, the default.
+    /// USV's track (each link joins neighbouring lanes); ours.
     Lanes,
 }
 
@@ -367,7 +367,7 @@ impl Default for Acoustic {
             resolution: 5.0,  // 𝓛_r: 5 m, a fifth of the synthetic grid cell
             los_shrink: 15.0, // ours: half of d_t per round
             los_rounds: 5,
-            graph: A2aGraph::Lanes,
+            graph: A2aGraph::PerStep,
         }
     }
 }

@@ -236,9 +236,9 @@ pub(crate) fn enum_values(key: &str) -> Option<Vec<String>> {
     match key {
         "auv.discretisation" => Some(names(&[Discretisation::Zoh, Discretisation::Euler])),
         "acoustic.graph" => Some(names(&[
+            A2aGraph::PerStep,
             A2aGraph::Lanes,
             A2aGraph::Window,
-            A2aGraph::PerStep,
         ])),
         "usv.objective" => Some(names(&[UsvObjective::Away, UsvObjective::Destination])),
         "usv.away_from" => Some(names(&[AwayFrom::Track, AwayFrom::Window])),

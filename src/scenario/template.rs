@@ -52,10 +52,11 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              lines 17–22). 1 to 100."
         }
         "acoustic.graph" => {
-            "How Step 2 (P4) picks the A2A chain: \"lanes\" (ours: one chain per window, the \
-             AUVs in cross-track order, each link joining neighbouring lanes), \"window\" \
-             (ours: one chain per window, the longest summed over its steps) or \"per_step\" \
-             (the paper: the longest Hamiltonian path of each step)."
+            "How Step 2 (P4) picks the A2A chain: \"per_step\" (the paper: the longest \
+             Hamiltonian path of each step), \"lanes\" (ours: one chain per window, the AUVs \
+             in cross-track order; explores more and is faster at N ≥ 20, but multi-window \
+             missions of 20 AUVs can break their chain, see BENCHMARKS.md) or \"window\" (ours: \
+             one chain per window, the longest summed over its steps)."
         }
         "auv" => {
             "AUV limits, and the coefficients of the simplified dynamics, eqs. (5)–(8): \

@@ -12,7 +12,7 @@
 //! (at most d_s each) hold the team to about d_s across in all, where the same AUVs chained in
 //! their cross-track order may spread to (N − 1)·d_s and sweep separate lanes.
 //!
-//! - [`lanes`] (the default): the AUVs chained in the order of their mean cross-track offset
+//! - [`lanes`]: the AUVs chained in the order of their mean cross-track offset
 //!   from the USV's track over the window (Step 1's positions), each link joining neighbouring
 //!   lanes. Over a grid with obstacles, or where a link of that order is out of range at some
 //!   step, the chain is the one with the fewest such (step, edge) pairs and, among those, the
@@ -20,7 +20,11 @@
 //! - [`longest`]: the Hamiltonian path with the fewest blocked (step, edge) pairs and, among
 //!   those, the largest Σ_k Σ_edges ‖P_i\[k\] − P_j\[k\]‖²: the paper's OF4 summed over the window.
 //!
-//! BENCHMARKS.md ("One chain per window") has the measurements behind the default.
+//! At a step where an edge of the window's chain cannot carry a link at Step 1's positions,
+//! `step2::solve` keeps the step's own P4 path if it has fewer such edges.
+//!
+//! BENCHMARKS.md ("One chain per window") has the measurements, and why neither is the default
+//! yet (multi-window missions of 20 AUVs broke their chain with lanes).
 
 use super::dist2;
 use super::p4_hamiltonian::{longest_path_over, HamiltonianPath};
