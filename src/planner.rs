@@ -243,7 +243,8 @@ fn run(
         // Step 1 (P2), line 9
         let clock = Instant::now();
         let p2 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone());
-        let more = w + 1 < s.windows; // another window follows: the terminal margin
+        // another window follows: the terminal margin, if the scenario asks for it
+        let more = s.horizon.terminal_margin && w + 1 < s.windows;
         let mut p2 = p2.with_track(&track).with_terminal(more);
         let mut trace = Vec::new();
         let out1 = step1::solve(&mut p2, heading, &mut |it| {

@@ -394,35 +394,39 @@ fn the_lanes_chain_is_one_chain_for_the_window_and_explores_more() {
     );
 }
 
-/// A multi-window mission of the default scenario (N = 5), planned and checked.
-fn default_mission(seed: u64, windows: usize) -> shoal::plan::Plan {
-    plans_and_passes(&Scenario {
+/// A multi-window mission of the default scenario (N = 5) with the lanes chain and the
+/// terminal margin, planned and checked.
+fn lanes_mission(seed: u64, windows: usize) -> shoal::plan::Plan {
+    let mut s = Scenario {
         seed,
         windows,
         ..Scenario::default()
-    })
+    };
+    s.acoustic.graph = shoal::scenario::A2aGraph::Lanes;
+    s.horizon.terminal_margin = true;
+    plans_and_passes(&s)
 }
 
-/// Regression (issue 22, the lanes chain): window 1 of seed 5 ended with AUV 3 at the grid's
+/// Regression (issue 22, `acoustic.graph = "lanes"`): window 1 of seed 5 ended with AUV 3 at the grid's
 /// east edge moving out at 1.5 m/s east (1.9 m/s in all), and window 2 was refused with "a constraint cannot
 /// hold: heading rate C1_14: AUV 3 turns 1.976 rad more than ψ̇_max·δ between steps 0 and 1":
 /// its momentum carried it 9.8 m on, so it had to reverse in one step. Each AUV's coast point
 /// at k = K now stays inside the grid by the distance it needs to slow below v_min
-/// (`team::bounds`, the terminal margin).
+/// (`team::bounds`, the terminal margin, `horizon.terminal_margin`).
 #[test]
 fn regression_a_window_that_ends_at_the_grid_edge_leaves_the_next_one_feasible() {
-    let p = default_mission(5, 3);
+    let p = lanes_mission(5, 3);
     assert_eq!(p.metrics.connected_fraction, 1.0);
 }
 
-/// Regression (issue 22, the lanes chain): in window 7 of seed 5, Step 3 stalled with its
-/// trust region shrunk to 2 mm and the chain broken at step 1. Where two heading pairs keep the
+/// Regression (issue 22, the lanes chain with the terminal margin): in window 7 of seed 5,
+/// Step 3 stalled with its trust region shrunk to 2 mm and the chain broken at step 1. Where two heading pairs keep the
 /// same velocity slow, the model charged its excess speed once and the true merit twice, so
 /// the model predicted a decrease of 3 251 that no step could make (`team::heading`,
 /// `shared_rows`).
 #[test]
 fn regression_a_slow_velocity_two_heading_pairs_share_is_charged_twice() {
-    let p = default_mission(5, 8);
+    let p = lanes_mission(5, 8);
     assert_eq!(p.metrics.connected_fraction, 1.0);
     assert!(p.windows.iter().all(|w| w.final_.status != "stalled"));
 }

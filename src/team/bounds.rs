@@ -3,8 +3,9 @@
 //! the grid bounds: every vehicle stays over the seafloor grid, the only floor known (for the
 //! USV too: past the edge, OF1_8 would drag the team off the map).
 //!
-//! Ours, for the receding horizon: a terminal margin from the grid's edge, in every window but
-//! a mission's last (`TeamProblem::with_terminal`). The next window starts from this one's last
+//! Ours, for the receding horizon: a terminal margin from the grid's edge, with
+//! `horizon.terminal_margin` (off by default) in every window but a mission's last
+//! (`TeamProblem::with_terminal`). The next window starts from this one's last
 //! state, and an AUV's momentum carries it on: with the default REMUS model, a step of
 //! δ = 100 s moves it pv·V\[K\] ≈ 6.5 s × V\[K\] before any input acts. An AUV that ends a
 //! window at the edge moving out at 1.5 m/s must then reverse within one step, which C1_14
