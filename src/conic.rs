@@ -284,7 +284,8 @@ pub struct Fill {
 /// [`Fill`] of the KKT matrix of P (n × n, upper triangle used), A (m × n) and `cones`: the
 /// pattern of Clarabel's KKT system, second-order cones of dimension ≤ 4 as dense blocks (as
 /// Clarabel stores them; every cone of shoal's models is that small) and larger ones as their
-/// diagonal (Clarabel's sparse expansion adds two columns per cone, not counted).
+/// diagonal (Clarabel's sparse expansion adds two columns per cone, not counted). Cones other
+/// than zero, nonnegative and second-order are an error.
 pub fn fill(
     p: &CscMatrix<f64>,
     a: &CscMatrix<f64>,
@@ -310,7 +311,12 @@ pub fn fill(
     for cone in cones {
         let (d, dense) = match *cone {
             SupportedConeT::SecondOrderConeT(d) => (d, d <= 4),
-            _ => (cone_dim(cone), false),
+            SupportedConeT::ZeroConeT(d) | SupportedConeT::NonnegativeConeT(d) => (d, false),
+            _ => {
+                return Err(ConicError::Setup(format!(
+                    "fill: {cone:?} is not a cone of shoal's models"
+                )))
+            }
         };
         for i in 0..d {
             let first = if dense { row } else { row + i };
@@ -344,15 +350,6 @@ pub fn fill(
         factor_nonzeros: l.colptr[l.n],
         multiply_adds,
     })
-}
-
-/// The dimension of a cone.
-fn cone_dim(cone: &SupportedConeT<f64>) -> usize {
-    use SupportedConeT::*;
-    match *cone {
-        ZeroConeT(d) | NonnegativeConeT(d) | SecondOrderConeT(d) => d,
-        _ => 0,
-    }
 }
 
 /// A Clarabel solver over fixed P and A patterns.

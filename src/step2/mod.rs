@@ -96,3 +96,58 @@ pub fn solve(
 pub(crate) fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
     (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::seafloor::Lattice;
+
+    /// A flat floor at −100 m, 2 km across.
+    fn flat() -> Seafloor {
+        let (n, c, x0) = (41usize, 50.0, -1000.0);
+        Seafloor::from_nodes(
+            Lattice::new(n, n, x0, x0, c, c),
+            vec![-100.0; n * n],
+            vec![false; n * n],
+        )
+        .unwrap()
+    }
+
+    /// Three AUVs over k = 0..=3 with the USV running east 100 m per step: at k = 2, 3 they are
+    /// abreast at y = 0, 100, 200 m; at k = 1 AUVs 1 and 2 have swapped sides (y = 260 and 130).
+    fn swapped_at_step_one() -> Trajectory {
+        let y = [
+            [0.0, 0.0, 0.0, 0.0],
+            [100.0, 260.0, 100.0, 100.0],
+            [200.0, 130.0, 200.0, 200.0],
+        ];
+        Trajectory {
+            usv_p: (0..4).map(|k| [100.0 * k as f64, -50.0]).collect(),
+            usv_u: vec![[0.0; 2]; 3],
+            auv_p: y
+                .iter()
+                .map(|yn| (0..4).map(|k| [100.0 * k as f64, yn[k], -50.0]).collect())
+                .collect(),
+            auv_v: vec![vec![[0.0; 3]; 4]; 3],
+            auv_u: vec![vec![[0.0; 3]; 3]; 3],
+        }
+    }
+
+    /// The lanes chain 0–1–2 holds at k = 2, 3; at k = 1 its edge 0–1 is 260 m > d_s, and the
+    /// step keeps its own P4 path 0–2–1, whose links are all in range there.
+    #[test]
+    fn a_step_where_the_window_chain_is_out_of_range_keeps_its_own_path() {
+        let t = swapped_at_step_one();
+        let g = solve(&t, &flat(), 5.0, 150.0, A2aGraph::Lanes);
+        assert_eq!(g.a2a[2], vec![[0, 1], [1, 2]]);
+        assert_eq!(g.a2a[3], vec![[0, 1], [1, 2]]);
+        let mut at_one = g.a2a[1].clone();
+        at_one.sort();
+        assert_eq!(at_one, vec![[0, 2], [1, 2]]);
+        // the paper's P4 at every step picks the same path at k = 1
+        let paper = solve(&t, &flat(), 5.0, 150.0, A2aGraph::PerStep);
+        let mut own = paper.a2a[1].clone();
+        own.sort();
+        assert_eq!(own, at_one);
+    }
+}
