@@ -7,7 +7,9 @@
 //!
 //! Optional after the mode: the seeds (default `1-5`, or a list `1,3`), `N=...` and `W=...`
 //! lists that replace the mode's defaults (`N=5,20 W=1,2`), and `away=window` for the paper's
-//! OF1_8 (measured from each window's start) instead of the default `away=track`. One CSV row
+//! OF1_8 (measured from each window's start) instead of the default `away=track`, and any
+//! `key=value` with a dot in the key to override a scenario key
+//! (`acoustic.graph=per_step`). One CSV row
 //! per run on stdout (every plan is checked); the mean and range over seeds per setting on
 //! stderr.
 
@@ -26,14 +28,17 @@ fn main() {
         _ => panic!("the mode is `team` or `windows`"),
     };
     let mut seeds = list("1-5");
-    let mut away = shoal::scenario::AwayFrom::Track;
+    let mut away = None;
+    let mut overrides = Vec::new();
     for a in args.iter().skip(1) {
-        if let Some(v) = a.strip_prefix("N=") {
+        if a.split_once('=').is_some_and(|(k, _)| k.contains('.')) {
+            overrides.push(a.clone());
+        } else if let Some(v) = a.strip_prefix("N=") {
             teams = list(v);
         } else if let Some(v) = a.strip_prefix("W=") {
             windows = list(v);
         } else if a == "away=window" {
-            away = shoal::scenario::AwayFrom::Window;
+            away = Some(shoal::scenario::AwayFrom::Window);
         } else {
             seeds = list(a);
         }
@@ -46,13 +51,14 @@ fn main() {
     for &n in &teams {
         for &w in &windows {
             for &seed in &seeds {
-                let mut s = Scenario {
-                    seed,
-                    windows: w as usize,
-                    team: shoal::scenario::Team { auvs: n as usize },
-                    ..Scenario::default()
-                };
-                s.usv.away_from = away;
+                let mut s: Scenario =
+                    shoal::scenario::default_with(&overrides).expect("valid overrides");
+                s.seed = seed;
+                s.windows = w as usize;
+                s.team.auvs = n as usize;
+                if let Some(a) = away {
+                    s.usv.away_from = a;
+                }
                 let clock = std::time::Instant::now();
                 let (floor, _) = mission::scenario_floor(&s, std::path::Path::new("."))
                     .expect("the default floor builds");

@@ -88,6 +88,31 @@ impl Seafloor {
         b: [f64; 3],
         resolution: f64,
     ) -> Result<SegmentClearance, SeafloorError> {
+        self.clearance_from(a, b, resolution, 0)
+    }
+
+    /// [`Seafloor::segment_clearance`] over the half-open segment (a, b]: the samples of 𝓛_r
+    /// but the first. Along a polyline each waypoint is then measured once, as the end of the
+    /// segment it closes; the SCP's merit sums the violations of a vehicle's segments, and
+    /// with both ends it counted a waypoint below the floor twice while the model's rows
+    /// (one per waypoint) priced it once (issue 22).
+    pub fn open_segment_clearance(
+        &self,
+        a: [f64; 3],
+        b: [f64; 3],
+        resolution: f64,
+    ) -> Result<SegmentClearance, SeafloorError> {
+        self.clearance_from(a, b, resolution, 1)
+    }
+
+    /// The least clearance over the samples j = first..=n of 𝓛_r on a → b.
+    fn clearance_from(
+        &self,
+        a: [f64; 3],
+        b: [f64; 3],
+        resolution: f64,
+        first: usize,
+    ) -> Result<SegmentClearance, SeafloorError> {
         let n = self.segment_intervals(a, b, resolution)?;
         let sample = |k: usize| -> Result<SegmentClearance, SeafloorError> {
             let fraction = k as f64 / n as f64;
@@ -98,8 +123,8 @@ impl Seafloor {
                 fraction,
             })
         };
-        let mut best = sample(0)?;
-        for k in 1..=n {
+        let mut best = sample(first)?;
+        for k in first + 1..=n {
             let c = sample(k)?;
             if c.min_clearance < best.min_clearance {
                 best = c;

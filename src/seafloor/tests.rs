@@ -329,6 +329,20 @@ fn segment_over_a_seamount_reports_its_peak() {
 }
 
 #[test]
+fn the_open_segment_leaves_out_its_start() {
+    // flat floor at -100 m; a segment from 2 m below the floor up to 10 m above it, 1 m long
+    let f = grid(3, 3, 0.0, 0.0, 10.0, 10.0, |_, _| -100.0);
+    let (a, b) = ([5.0, 5.0, -102.0], [6.0, 5.0, -90.0]);
+    let closed = f.segment_clearance(a, b, 1.0).unwrap();
+    assert_eq!((closed.min_clearance, closed.fraction), (-2.0, 0.0));
+    let open = f.open_segment_clearance(a, b, 1.0).unwrap();
+    assert_eq!((open.min_clearance, open.fraction, open.at), (10.0, 1.0, b));
+    // with more samples the first one after a is the worst
+    let open = f.open_segment_clearance(a, b, 0.5).unwrap();
+    assert_eq!((open.min_clearance, open.fraction), (4.0, 0.5));
+}
+
+#[test]
 fn fingerprint_sees_every_bit() {
     let f = bumpy();
     let fp = f.fingerprint();

@@ -7,7 +7,8 @@
 //! Departure: the paper freezes Z at the previous iterate's position ("𝕫_n[k] is found and
 //! bounded"); here C2_2 is linearised about the reference (value and gradient of Z) and
 //! softened by a slack ν_f[n][k] per segment, priced by the SCP's penalty, as SCvx needs.
-//! The true violation is the segment's worst sample.
+//! The true violation is the segment's worst sample but its first (P[k−1], which the segment
+//! before measures, or the window's fixed start): the samples the rows take.
 
 use super::model::{Assembly, INACTIVE};
 use super::{TeamProblem, OBSTACLE};
@@ -188,6 +189,77 @@ pub(super) fn detail(p: &TeamProblem, n: usize, k: usize, at: [f64; 3]) -> Strin
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mission::scenario_floor;
+    use crate::scenario::Scenario;
+    use proptest::prelude::*;
+
+    /// One AUV, five steps of the default scenario: the problem and its first guess.
+    fn with_guess(check: impl FnOnce(&TeamProblem, Trajectory)) {
+        let mut s = Scenario::default();
+        s.team.auvs = 1;
+        s.horizon.steps = 5;
+        let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
+        let keep_out = floor.keep_out();
+        let p = TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
+        let t = p.initial_guess(None);
+        check(&p, t);
+    }
+
+    /// The shortfall of the rows' sample j of segment a → b at clearance ε (no margin).
+    fn row_shortfall(p: &TeamProblem, a: [f64; 3], b: [f64; 3]) -> f64 {
+        let eps = p.scenario.auv.floor_clearance;
+        let n = segment_intervals(a, b, p.scenario.acoustic.resolution);
+        (1..=n)
+            .map(|j| {
+                floor_sample(p.keep_out, eps, a, b, j as f64 / n as f64)
+                    .unwrap()
+                    .0
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Regression (issue 22, lanes chain, N = 20, seed 1, window 2 of 3): an AUV that hovered
+    /// (P[1] and P[2] 0.3 m apart, one sample of 𝓛_r) with P[1] 2.675 m below ε had that
+    /// shortfall measured in segment 0 → 1 and again in 1 → 2, while the model's rows of
+    /// 1 → 2 take only P[2]. The model then predicted a decrease of λ · 2.675 = 2 675 at every
+    /// trust radius, Step 3 stalled, and the chain broke in the next window. Each segment now
+    /// measures the samples its rows take.
+    #[test]
+    fn regression_a_waypoint_below_the_floor_is_measured_once() {
+        with_guess(|p, mut t| {
+            let eps = p.scenario.auv.floor_clearance;
+            let [x, y, _] = t.auv_p[0][1];
+            let z = p.keep_out.elevation(x, y).unwrap();
+            t.auv_p[0][1] = [x, y, z + eps - 2.0];
+            t.auv_p[0][2] = [x + 0.3, y, z + eps + 5.0];
+            let (v1, _) = violation(p, &t, 0, 1);
+            let (v2, _) = violation(p, &t, 0, 2);
+            assert!((v1 - 2.0).abs() < 1e-9, "segment 0 → 1 falls short by {v1}");
+            assert!(v2 < 0.0, "segment 1 → 2 falls short by {v2}");
+        });
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// The SCP's measure of C2_2 on a segment is the largest shortfall among the samples
+        /// the model's rows choose from (`floor_sample` at j = 1..=n): the model and the merit
+        /// agree at the reference, as SCvx needs, for any segment.
+        #[test]
+        fn the_measure_takes_the_rows_samples(
+            dx in -200.0..200.0f64, dy in -200.0..200.0f64,
+            dz0 in -20.0..20.0f64, dz1 in -20.0..20.0f64, k in 1usize..=5,
+        ) {
+            with_guess(|p, mut t| {
+                let [x, y, _] = t.auv_p[0][k - 1];
+                let at = |x: f64, y: f64, dz: f64| [x, y, p.keep_out.elevation(x, y).unwrap() + dz];
+                t.auv_p[0][k - 1] = at(x, y, dz0);
+                t.auv_p[0][k] = at(x + dx, y + dy, dz1);
+                let (v, _) = violation(p, &t, 0, k);
+                let rows = row_shortfall(p, t.auv_p[0][k - 1], t.auv_p[0][k]);
+                assert!((v - rows).abs() < 1e-9, "measure {v}, rows {rows}");
+            });
+        }
+    }
 
     /// A row's g at the reference is the true shortfall when the reference violates C2_2 or
     /// holds it with less than `FLOOR_MARGIN` to spare (so the model and the SCP's measure

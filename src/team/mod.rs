@@ -270,20 +270,22 @@ impl<'a> TeamProblem<'a> {
     }
 
     /// The least clearance (m) of the segment a → b over the keep-out field at the samples of
-    /// 𝓛_r, and where it occurs. A segment (partly) off the grid, which only a first guess or a
+    /// 𝓛_r but a itself (`Seafloor::open_segment_clearance`: a is the previous segment's end,
+    /// or the window's fixed start, and the model's rows take the samples j = 1..=n), and
+    /// where it occurs. A segment (partly) off the grid, which only a first guess or a
     /// solver's stray iterate can be (the grid bounds bring every model solution back in), is
     /// measured on its part clamped into the grid, less the distance by which it leaves the
     /// grid: the measure stays finite and continuous, and grows the farther the segment strays.
     /// (An infinite measure made the SCP's merit, ratio and predicted decrease non-finite.)
     fn keep_out_clearance(&self, a: [f64; 3], b: [f64; 3]) -> (f64, [f64; 3]) {
         let r = self.scenario.acoustic.resolution;
-        if let Ok(c) = self.keep_out.segment_clearance(a, b, r) {
+        if let Ok(c) = self.keep_out.open_segment_clearance(a, b, r) {
             return (c.min_clearance, c.at);
         }
         let (ca, cb) = (self.inside(a), self.inside(b));
         let off = |p: [f64; 3], q: [f64; 3]| (p[0] - q[0]).hypot(p[1] - q[1]);
         let out = off(a, ca).max(off(b, cb));
-        match self.keep_out.segment_clearance(ca, cb, r) {
+        match self.keep_out.open_segment_clearance(ca, cb, r) {
             Ok(c) if out.is_finite() => (c.min_clearance - out, c.at),
             // non-finite positions: a shortfall larger than any grid, still finite
             _ => (-OFF_GRID, b),
