@@ -61,8 +61,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "acoustic.graph" => {
             "How Step 2 (P4) picks the A2A chain: \"per_step\" (the paper: the longest \
              Hamiltonian path of each step), \"lanes\" (ours: one chain per window, the AUVs \
-             in cross-track order; explores more and is faster at N ≥ 20, but multi-window \
-             missions of 20 AUVs can break their chain, see BENCHMARKS.md) or \"window\" (ours: \
+             in cross-track order; explores more and is faster at N ≥ 20, but over multi-window \
+             missions of 20 AUVs it explores less, see BENCHMARKS.md) or \"window\" (ours: \
              one chain per window, the longest summed over its steps)."
         }
         "auv" => {
