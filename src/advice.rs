@@ -75,6 +75,9 @@ fn unconverged(windows: &[Window], s: &Scenario) -> Vec<String> {
                      scp.tolerance = {}",
                     s.scp.min_trust_region, s.scp.tolerance
                 ),
+                "solver_trouble" => "stopped: the convex solver (Clarabel) ended in numerical \
+                                     trouble at every trust radius tried"
+                    .to_string(),
                 other => format!("ended with status {other}"),
             };
             out.push(format!(

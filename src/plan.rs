@@ -249,7 +249,9 @@ impl Plan {
 pub struct Stage {
     /// "converged"; "max_iterations" when the SCP stopped at its iteration limit with a
     /// feasible iterate; "stalled" when its trust region collapsed (or its penalty ran out)
-    /// first. Only "converged" is the optimum of the window's problem to `scp.tolerance`.
+    /// first; "solver_trouble" when the convex solver failed at every trust radius tried (the
+    /// best feasible iterate before). Only "converged" is the optimum of the window's problem
+    /// to `scp.tolerance`.
     pub status: String,
     /// SCP iterations (convex subproblems solved, over every line-of-sight round): the length
     /// of `scp`.

@@ -117,6 +117,7 @@ fn short(status: &str) -> &str {
         "converged" => "conv",
         "max_iterations" => "max",
         "stalled" => "stall",
+        "solver_trouble" => "trbl",
         s => s,
     }
 }

@@ -128,15 +128,21 @@ pub enum ScpStatus {
     /// with no decrease left) before the tolerance was met; the returned iterate is feasible
     /// within tolerance, and no better one was found near it.
     Stalled,
+    /// The convex solver ended in numerical trouble at the radius of the last iteration and
+    /// at each of `TROUBLE_RETRIES` halvings of it; the returned iterate is the best feasible
+    /// one found before.
+    SolverTrouble,
 }
 
 impl ScpStatus {
-    /// "converged", "max_iterations" or "stalled", as the plan file records it.
+    /// "converged", "max_iterations", "stalled" or "solver_trouble", as the plan file
+    /// records it.
     pub fn as_str(&self) -> &'static str {
         match self {
             ScpStatus::Converged => "converged",
             ScpStatus::MaxIterations => "max_iterations",
             ScpStatus::Stalled => "stalled",
+            ScpStatus::SolverTrouble => "solver_trouble",
         }
     }
 }
@@ -231,6 +237,15 @@ where
                     troubles += 1;
                     radius /= SHRINK;
                     continue;
+                }
+                // trouble that persists with a feasible iterate in hand: stop there (N = 20:
+                // a NumericalError at a radius of 1.9 km and at every retry ended a mission
+                // whose window had a feasible plan). Not a stall: the log, which holds the
+                // solves that ended, shows no collapsed trust region (`shoal check` knows)
+                Err(e) if problem.numerical_trouble(&e) && best.is_some() => {
+                    status = ScpStatus::SolverTrouble;
+                    have_feasible_reference = true;
+                    break;
                 }
                 Err(e) => return Err(e),
             };
@@ -540,7 +555,9 @@ mod tests {
     /// status NumericalError" on a feasible mission): a convex solve in numerical trouble ended
     /// the plan. The loop now treats it as a rejected step, and the smaller model solves: here
     /// every model with a radius above 0.2 fails, and the loop still finds the optimum from a
-    /// radius of 0.5; with trouble at every radius it gives up after 3 retries in a row.
+    /// radius of 0.5; with trouble at every radius it gives up after 3 retries in a row, with
+    /// the error from an infeasible start, and from a feasible one with that start and the
+    /// status "solver_trouble".
     #[test]
     fn regression_a_solve_in_numerical_trouble_is_a_rejected_step() {
         let settings = settings();
@@ -557,8 +574,17 @@ mod tests {
             solver: None,
             trouble_above: 0.0,
         };
-        let e = solve(&mut always, [3.0, 0.5], &settings, &mut |_| {});
+        let e = solve(&mut always, [0.5, 0.5], &settings, &mut |_| {});
         assert_eq!(e.err(), Some(Fail::Trouble));
+        let mut always = Hyperbola {
+            solver: None,
+            trouble_above: 0.0,
+        };
+        let out = solve(&mut always, [3.0, 0.5], &settings, &mut |_| {}).unwrap();
+        assert_eq!(
+            (out.status, out.iterate),
+            (ScpStatus::SolverTrouble, [3.0, 0.5])
+        );
     }
 
     /// min a/2·‖x − t‖² − b/2·‖x‖² over x ∈ ℝ², b < a: the concave reward −b/2·‖x‖² is

@@ -25,6 +25,7 @@ fn short(status: &str) -> &str {
         "converged" => "conv",
         "max_iterations" => "max iter",
         "stalled" => "stalled",
+        "solver_trouble" => "solver",
         s => s,
     }
 }

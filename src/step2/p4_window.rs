@@ -24,8 +24,8 @@
 //! `step2::solve` keeps the step's own P4 path if it has fewer such edges.
 //!
 //! BENCHMARKS.md ("One chain per window") has the measurements, and why neither is the default
-//! yet (over 5-window missions of 20 AUVs, lanes leaves a window short of convergence on two
-//! seeds of five, and the paper's chains explore more there).
+//! yet (over 5-window missions of 20 AUVs, lanes leaves a window short of convergence on one
+//! seed of five, and the paper's chains explore a little more).
 
 use super::dist2;
 use super::p4_hamiltonian::{longest_path_over, HamiltonianPath};

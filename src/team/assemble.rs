@@ -111,7 +111,7 @@ pub(super) fn assemble(
         // a decrease at any distance. Trust it only within Δ of the reference's P_USV[K].
         trust::usv(p, &mut m, r, radius, kk);
     }
-    heading::cones(p, r, &pieces, &mut m);
+    heading::cones(p, &pieces, &mut m);
     links::upper_cones(p, &mut m); // Step 3 only
     Ok(m)
 }

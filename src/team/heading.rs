@@ -19,20 +19,25 @@
 //! `SLOW_MARGIN`), the rule every piece restricts to, so that the model and the measure agree
 //! on which references are feasible; where ā is the window's fixed start the ‖a‖ − v̲ term
 //! is left out (no step can slow it). The checker measures the true θ and v_min
-//! (`HeadingRule::excess`), which the tightened rule implies. Where a piece charges a violated
-//! reference less than v, its rows are tightened to charge v (`HeadingRule::shift`).
+//! (`HeadingRule::excess`), which the tightened rule implies.
 //!
 //! The convex model keeps, about the reference (ā, b̄), one alternative (`Piece`): the turn
 //! (`Piece::Turn`) when the reference turns within θ and ā has a direction, otherwise
-//! whichever alternative the reference is nearest to satisfying. Every piece is a convex
-//! restriction of the disjunction, so a model solution that meets it meets C1_14 (no
-//! linearisation error for the SCP to reject):
+//! whichever alternative the reference is nearest to satisfying. Every piece but a turn the
+//! reference breaks is a convex restriction of the disjunction, so a model solution that meets
+//! it meets C1_14 (no linearisation error for the SCP to reject):
 //! - Turn, k ≥ 2: both a and b within θ/2 of the bisector d̂ of (ā, b̄) (`HeadingRule::axis`),
 //!   two linear rows each: ±(d̂ × v) − tan(θ/2)·(d̂·v) ≤ ν. The angle between them is then at most
 //!   θ, and a reference that turns within θ meets it. (A linearisation about ā's direction is
 //!   poor at low speed: at 0.1–0.3 m/s a change of a few cm/s swings it by tenths of a radian.)
 //! - Turn, k = 1: a = V\[0\] is the window's fixed start, so the same rows about â with the full
 //!   θ are exact.
+//! - Turn, k ≥ 2, where the reference breaks it (v > 0): g₊ and g₋ linearised about (ā, b̄),
+//!   value and gradient (`HeadingRule::turn_gradients`). The bisector rows are a restriction,
+//!   not a model of v: at a violated reference their slope differs from v's, the model's
+//!   steps raised v where it promised to lower it, the trust region shrank to centimetres and
+//!   Step 3 crawled 50 iterations with the chain out of band (N = 20, lanes, seed 5, window
+//!   2 of 5). Once the reference turns within θ, the restriction again.
 //! - Slow: the second-order cone ‖V_h‖ ≤ v_min·(1 − SLOW_MARGIN) + ν.
 //!
 //! θ here is the model's, tightened by [`HEADING_MARGIN`].
@@ -218,44 +223,32 @@ impl HeadingRule {
         }
     }
 
+    /// g₊ and g₋ with the model's θ at (a, b) and their gradients: [(g, ∇_a g, ∇_b g); 2],
+    /// g± = (±(a × b) − t·(a·b))/‖a‖. `a` must be nonzero.
+    pub fn turn_gradients(&self, a: [f64; 2], b: [f64; 2]) -> [(f64, [f64; 2], [f64; 2]); 2] {
+        let t = self.model.tan;
+        let na = norm(a);
+        let cross = a[0] * b[1] - a[1] * b[0];
+        let dot = a[0] * b[0] + a[1] * b[1];
+        [1.0, -1.0].map(|s| {
+            let num = s * cross - t * dot;
+            let dn_da = [s * b[1] - t * b[0], -s * b[0] - t * b[1]];
+            let dn_db = [-s * a[1] - t * a[0], s * a[0] - t * a[1]];
+            let na3 = na * na * na;
+            (
+                num / na,
+                [
+                    dn_da[0] / na - num * a[0] / na3,
+                    dn_da[1] / na - num * a[1] / na3,
+                ],
+                [dn_db[0] / na, dn_db[1] / na],
+            )
+        })
+    }
+
     /// The speed bound of a "slow" piece.
     pub fn slow_bound(&self) -> f64 {
         self.v_min * (1.0 - SLOW_MARGIN)
-    }
-
-    /// What the unshifted piece charges at the reference (ā, b̄), m/s: the largest value of
-    /// its rows (Turn), or the speed above the slow bound (SlowBefore, SlowAfter); 0 for Free.
-    pub fn charge(&self, piece: Piece, a: [f64; 2], b: [f64; 2], fixed_before: bool) -> f64 {
-        let value = |c: [f64; 2], v: [f64; 2]| c[0] * v[0] + c[1] * v[1];
-        match piece {
-            Piece::Free => 0.0,
-            Piece::Turn => {
-                let (rows_a, rows_b) = self.turn_rows(a, b, fixed_before);
-                let on_a = rows_a.map_or(f64::NEG_INFINITY, |r| value(r[0], a).max(value(r[1], a)));
-                on_a.max(value(rows_b[0], b)).max(value(rows_b[1], b))
-            }
-            Piece::SlowBefore => norm(a) - self.slow_bound(),
-            Piece::SlowAfter => norm(b) - self.slow_bound(),
-        }
-    }
-
-    /// How much a pair's rows (or its speed bound) move about the reference: where the piece
-    /// charges the reference less than the measure v(ā, b̄), they are tightened by the
-    /// difference, so that the model charges there what the measure does; elsewhere 0.
-    ///
-    /// Without it the Turn rows about the bisector charged a violated reference less than v:
-    /// at N = 20 (lanes, seed 3, window 3 of 5) 58 713 against 59 343 (λ·δ·Σv), and the model
-    /// promised a decrease of 630 at every trust radius down to 1 mm, so Step 3 stalled with
-    /// its chain out of band (issue 22). Loosening rows that charge more than v would let a
-    /// step that breaks C1_14 look free to the model (tried: a 5-window mission then failed
-    /// "a constraint cannot hold"), so a piece may charge a violated reference more than v:
-    /// the model stays a restriction.
-    pub fn shift(&self, charge: f64, truth: f64) -> f64 {
-        if charge > 0.0 {
-            (charge - truth).min(0.0)
-        } else {
-            0.0
-        }
     }
 }
 
@@ -290,33 +283,50 @@ pub(super) fn pieces(p: &TeamProblem, r: &Trajectory) -> Vec<Vec<Piece>> {
         .collect()
 }
 
-/// C1_14's Turn piece where the model keeps it: per AUV and step two rows on V_h[k−1] and two on
-/// V_h\[k\], all sharing ν_h\[n\]\[k\] (padding rows elsewhere, so the pattern is fixed).
+/// C1_14's Turn piece where the model keeps it: per AUV and step four rows on V_h[k−1] and
+/// V_h\[k\] sharing ν_h\[n\]\[k\]: the restriction (two on each velocity), or where the
+/// reference breaks the turn g± linearised (two rows on both); padding rows elsewhere, so the
+/// pattern is fixed.
 pub(super) fn rows(p: &TeamProblem, r: &Trajectory, pieces: &[Vec<Piece>], m: &mut Assembly) {
     let l = p.layout;
+    let h = &p.heading;
+    let dot = |c: [f64; 2], v: [f64; 2]| c[0] * v[0] + c[1] * v[1];
+    const PAD: ([f64; 2], [f64; 2], f64) = ([0.0; 2], [0.0; 2], INACTIVE);
     for n in 0..l.n {
         for k in 1..=l.k {
             let a = h2(r.auv_v[n][k - 1]);
             let b = h2(r.auv_v[n][k]);
-            let (rows_a, rows_b, rhs) = if pieces[n][k - 1] == Piece::Turn {
-                let (ra, rb) = p.heading.turn_rows(a, b, k == 1);
-                let charge = p.heading.charge(Piece::Turn, a, b, k == 1);
-                let rhs = p.heading.shift(charge, p.heading.violation(a, b, k == 1));
-                (ra, Some(rb), rhs)
-            } else {
-                (None, None, INACTIVE)
-            };
-            for (rows, kv) in [(rows_a, k - 1), (rows_b, k)] {
-                for i in 0..2 {
-                    let c = rows.map_or([0.0; 2], |r| r[i]);
-                    let row = m.row(if rows.is_some() { rhs } else { INACTIVE });
-                    if kv >= 1 {
-                        for (j, cj) in c.iter().enumerate() {
-                            m.a.push(row, l.auv_v(n, kv) + j, *cj);
-                        }
+            // four rows (coefficients on V[k−1], on V[k], rhs) sharing ν_h[n][k]
+            let mut set = [PAD; 4];
+            if pieces[n][k - 1] == Piece::Turn {
+                let truth = h.violation(a, b, k == 1);
+                if k >= 2 && truth > 0.0 {
+                    // a violated turn: g± linearised about the reference, exact to first
+                    // order there (the restriction's rows charged it, and sloped, otherwise)
+                    for (i, (g, ga, gb)) in h.turn_gradients(a, b).into_iter().enumerate() {
+                        set[i] = (ga, gb, dot(ga, a) + dot(gb, b) - g);
                     }
-                    m.a.push(row, l.heading_slack(n, k), -1.0);
+                } else {
+                    let (ra, rb) = h.turn_rows(a, b, k == 1);
+                    for i in 0..2 {
+                        if let Some(ra) = ra {
+                            set[i] = (ra[i], [0.0; 2], 0.0);
+                        }
+                        set[2 + i] = ([0.0; 2], rb[i], 0.0);
+                    }
                 }
+            }
+            for (ca, cb, rhs) in set {
+                let row = m.row(rhs);
+                if k >= 2 {
+                    for (j, cj) in ca.iter().enumerate() {
+                        m.a.push(row, l.auv_v(n, k - 1) + j, *cj);
+                    }
+                }
+                for (j, cj) in cb.iter().enumerate() {
+                    m.a.push(row, l.auv_v(n, k) + j, *cj);
+                }
+                m.a.push(row, l.heading_slack(n, k), -1.0);
             }
         }
     }
@@ -326,27 +336,15 @@ pub(super) fn rows(p: &TeamProblem, r: &Trajectory, pieces: &[Vec<Piece>], m: &m
 /// ‖V_h,n\[k\]‖ ≤ v_min·(1 − SLOW_MARGIN) + ν_h\[n\]\[k\] + ν_h\[n\]\[k+1\], where the slack of pair k
 /// enters when it keeps `SlowAfter` and that of pair k + 1 when it keeps `SlowBefore`; a speed
 /// bound no AUV reaches (2·V_max) where neither does.
-pub(super) fn cones(p: &TeamProblem, r: &Trajectory, pieces: &[Vec<Piece>], m: &mut Assembly) {
+pub(super) fn cones(p: &TeamProblem, pieces: &[Vec<Piece>], m: &mut Assembly) {
     let l = p.layout;
     let loose = 2.0 * p.scenario.auv.max_speed;
-    let h = &p.heading;
     for n in 0..l.n {
         for k in 1..=l.k {
             let after = pieces[n][k - 1] == Piece::SlowAfter;
             let before = k < l.k && pieces[n][k] == Piece::SlowBefore;
-            let v = h2(r.auv_v[n][k]);
-            // the true violation of the pair(s) that keep V[k] slow (both: the smaller, which
-            // `shared_rows` then charges to each)
-            let truth = |j: usize| h.violation(h2(r.auv_v[n][j - 1]), h2(r.auv_v[n][j]), j == 1);
-            let pair_truth = match (after, before) {
-                (true, true) => truth(k).min(truth(k + 1)),
-                (true, false) => truth(k),
-                (false, true) => truth(k + 1),
-                (false, false) => 0.0,
-            };
-            let charge = norm(v) - h.slow_bound();
             let row = m.row(if after || before {
-                h.slow_bound() + h.shift(charge, pair_truth)
+                p.heading.slow_bound()
             } else {
                 loose
             });
@@ -421,6 +419,22 @@ mod tests {
 
     fn polar(speed: f64, psi: f64) -> [f64; 2] {
         [speed * psi.cos(), speed * psi.sin()]
+    }
+
+    /// What a piece's restriction charges at the reference (ā, b̄), m/s: the largest value of
+    /// its rows (Turn), or the speed above the slow bound (SlowBefore, SlowAfter); 0 for Free.
+    fn charge(r: &HeadingRule, piece: Piece, a: [f64; 2], b: [f64; 2], fixed: bool) -> f64 {
+        let value = |c: [f64; 2], v: [f64; 2]| c[0] * v[0] + c[1] * v[1];
+        match piece {
+            Piece::Free => 0.0,
+            Piece::Turn => {
+                let (rows_a, rows_b) = r.turn_rows(a, b, fixed);
+                let on_a = rows_a.map_or(f64::NEG_INFINITY, |c| value(c[0], a).max(value(c[1], a)));
+                on_a.max(value(rows_b[0], b)).max(value(rows_b[1], b))
+            }
+            Piece::SlowBefore => norm(a) - r.slow_bound(),
+            Piece::SlowAfter => norm(b) - r.slow_bound(),
+        }
     }
 
     /// The regression of the module documentation: a reversal at 0.1006 m/s is 0.7 mm/s from
@@ -521,10 +535,11 @@ mod tests {
             }
         }
 
-        /// At the reference the model charges each pair at least what the SCP's measure does,
-        /// and exactly that where the unshifted piece charged less (SCvx needs the model and
-        /// the merit to agree at the reference, else the predicted decrease never vanishes);
-        /// where the piece charges nothing, v is 0.
+        /// At the reference the model charges each pair what the SCP's measure does where the
+        /// reference breaks C1_14 (a violated turn with both velocities free: g± linearised,
+        /// whose larger value is v; the fixed start's rows about â: g± themselves) and at least
+        /// that elsewhere, and a piece charges nothing only where v is 0. (SCvx needs the model
+        /// and the merit to agree at the reference, else the predicted decrease never vanishes.)
         #[test]
         fn the_model_charges_the_truth_at_the_reference(
             sa in 0.0..2.0f64, sb in 0.0..2.0f64, psi in -3.1..3.1f64, turn in -3.1..3.1f64,
@@ -534,15 +549,49 @@ mod tests {
             let (a, b) = (polar(sa, psi), polar(sb, psi + turn));
             let piece = r.piece(a, b, fixed);
             let truth = r.violation(a, b, fixed);
-            let charge = r.charge(piece, a, b, fixed);
-            if charge > 0.0 {
-                let charged = charge - r.shift(charge, truth);
-                prop_assert!(charged >= truth - 1e-12, "{piece:?}: {charged} against {truth}");
-                if charge <= truth {
-                    prop_assert!((charged - truth).abs() < 1e-12);
-                }
+            let charged = if piece == Piece::Turn && !fixed && truth > 0.0 {
+                let g = r.turn_gradients(a, b);
+                g[0].0.max(g[1].0)
             } else {
-                prop_assert_eq!(truth, 0.0, "{:?} charges {}", piece, charge);
+                charge(&r, piece, a, b, fixed)
+            };
+            if piece == Piece::Turn && truth > 0.0 {
+                prop_assert!((charged - truth).abs() < 1e-12, "{charged} against {truth}");
+            }
+            // (the slack is nonnegative: a piece met with room to spare charges 0)
+            prop_assert!(charged.max(0.0) >= truth - 1e-12, "{piece:?}: {charged} against {truth}");
+            if charged <= 0.0 {
+                prop_assert_eq!(truth, 0.0, "{:?} charges {}", piece, charged);
+            }
+        }
+
+        /// The gradients of g± agree with central finite differences.
+        #[test]
+        fn turn_gradients_match_finite_differences(
+            sa in 0.05..2.0f64, sb in 0.0..2.0f64, psi in -3.1..3.1f64, turn in -3.1..3.1f64,
+        ) {
+            let r = rule();
+            let (a, b) = (polar(sa, psi), polar(sb, psi + turn));
+            let h = 1e-6;
+            let g = r.turn_gradients(a, b);
+            for i in 0..2 {
+                let mut da = [[0.0; 2]; 2];
+                let mut db = [[0.0; 2]; 2];
+                for j in 0..2 {
+                    let (mut ap, mut am, mut bp, mut bm) = (a, a, b, b);
+                    ap[j] += h;
+                    am[j] -= h;
+                    bp[j] += h;
+                    bm[j] -= h;
+                    da[i][j] = (r.turn_gradients(ap, b)[i].0 - r.turn_gradients(am, b)[i].0) / (2.0 * h);
+                    db[i][j] = (r.turn_gradients(a, bp)[i].0 - r.turn_gradients(a, bm)[i].0) / (2.0 * h);
+                }
+                for j in 0..2 {
+                    prop_assert!((g[i].1[j] - da[i][j]).abs() < 1e-5 * (1.0 + sb / sa), "∇a {:?} {:?}", g[i].1, da[i]);
+                    prop_assert!((g[i].2[j] - db[i][j]).abs() < 1e-5, "∇b {:?} {:?}", g[i].2, db[i]);
+                }
+                let v = r.model.violation(a, b);
+                prop_assert!((g[0].0.max(g[1].0) - v).abs() < 1e-12);
             }
         }
 

@@ -74,7 +74,8 @@ pub struct WindowData {
     pub index: usize,
     /// Time of step k = 0 of this window, seconds since the start of the mission.
     pub start_time: f64,
-    /// Status of the final stage: "converged", "max_iterations" or "stalled".
+    /// Status of the final stage: "converged", "max_iterations", "stalled" or
+    /// "solver_trouble".
     pub status: String,
     /// SCP iterations of the final stage.
     pub iterations: usize,
