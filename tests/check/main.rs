@@ -913,6 +913,12 @@ fn regression_an_scp_status_its_log_contradicts_fails_structure() {
     // "stalled" is a status the planner writes
     let r = tamper(&|p| p.windows[0].step1.status = "stalled".into());
     assert!(r.passed(), "\n{}", r.table());
+    // so is "solver_trouble" (issue 22: the solves that failed are not in the log); a status
+    // the planner never writes is refused
+    let r = tamper(&|p| p.windows[0].step1.status = "solver_trouble".into());
+    assert!(r.passed(), "\n{}", r.table());
+    let r = tamper(&|p| p.windows[0].step1.status = "gave_up".into());
+    assert_fails_exactly(&r, &["structure"]);
 }
 
 /// Regression (issue 13): the checker sampled segments at the resolution the plan claims, so a
