@@ -131,11 +131,29 @@ fn reference_margin(g: f64) -> f64 {
     g - FLOOR_MARGIN + FLOOR_MARGIN.min(room)
 }
 
-/// Up to `count` sample indices from (g, j) pairs: largest g first, skipping a neighbour
-/// (within `apart` indices) of one already taken until no other sample is left.
+/// Up to `count` sample indices from (g, j) pairs: the largest g and the samples on either
+/// side of it first, then the rest by largest g, skipping a neighbour (within `apart` indices)
+/// of one already taken until no other sample is left.
+///
+/// The worst sample's neighbours come first because the field has a kink between them where
+/// the worst sample sits on a crest (bilinear cells meet there): the tangent plane at the
+/// worst sample says nothing of the far side, and a step that tilted the segment broke the
+/// sample beside it, which the spreading rule had left out, while the model promised the
+/// opposite (a link over a ridge, `step3::tests::links_regain_sight_over_a_ridge_in_one_round`:
+/// the worst sample moved 5 m, to the neighbour, and Step 3 stalled).
 pub(super) fn pick_samples(g: &mut [(f64, usize)], count: usize, apart: usize) -> Vec<usize> {
     g.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
     let mut picks: Vec<usize> = Vec::with_capacity(count);
+    if let Some(&(_, worst)) = g.first() {
+        for j in [Some(worst), worst.checked_sub(1), Some(worst + 1)]
+            .into_iter()
+            .flatten()
+        {
+            if picks.len() < count && g.iter().any(|&(_, i)| i == j) {
+                picks.push(j);
+            }
+        }
+    }
     for &(_, j) in g.iter() {
         if picks.len() == count {
             break;
@@ -192,6 +210,24 @@ mod tests {
     use crate::mission::scenario_floor;
     use crate::scenario::Scenario;
     use proptest::prelude::*;
+
+    /// The worst sample and both its neighbours get rows before the rest spread out; at the
+    /// ends of the segment only the neighbour that exists; fewer samples than rows: all.
+    #[test]
+    fn the_worst_sample_and_its_neighbours_come_first() {
+        let mut g: Vec<(f64, usize)> = (1..=20).map(|j| (-((j as f64) - 9.0).abs(), j)).collect();
+        let picks = pick_samples(&mut g, 6, 1);
+        assert_eq!(&picks[..3], &[9, 8, 10]);
+        assert!(picks[3..]
+            .iter()
+            .all(|&j| j.abs_diff(8) > 1 && j.abs_diff(10) > 1));
+        let mut g: Vec<(f64, usize)> = (1..=20).map(|j| (-(j as f64), j)).collect();
+        assert_eq!(&pick_samples(&mut g, 6, 1)[..2], &[1, 2]);
+        let mut g: Vec<(f64, usize)> = vec![(0.0, 1), (1.0, 2)];
+        assert_eq!(pick_samples(&mut g, 6, 1), vec![2, 1]);
+        let mut g: Vec<(f64, usize)> = (1..=20).map(|j| (j as f64, j)).collect();
+        assert_eq!(pick_samples(&mut g, 1, 1), vec![20]);
+    }
 
     /// One AUV, five steps of the default scenario: the problem and its first guess.
     fn with_guess(check: impl FnOnce(&TeamProblem, Trajectory)) {
