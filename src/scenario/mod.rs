@@ -64,8 +64,9 @@ pub struct Horizon {
     /// δ, sampling time in seconds (paper: 100 s).
     pub dt: f64,
     /// Ours: every window that another follows ends with each AUV able to slow below v_min on
-    /// the grid in the next window's first step (`team::bounds`). Off by default: it cost 7 %
-    /// of the explored area over 5 windows with per-step chains (N = 5, seeds 1–5).
+    /// the grid in the next window's first step (`team::bounds`). On by default, which missions
+    /// with the lanes chain need; with per-step chains it cost 7 % of the explored area over 5
+    /// windows (N = 5, seeds 1–5).
     pub terminal_margin: bool,
 }
 
@@ -88,8 +89,8 @@ pub struct Acoustic {
     /// Largest number of P5 solves per window in the line-of-sight loop (Algorithm 1, lines
     /// 17–22).
     pub los_rounds: usize,
-    /// How Step 2's P4 picks the A2A chain: the longest per step (the paper, the default), one
-    /// per window in cross-track order, or the longest per window.
+    /// How Step 2's P4 picks the A2A chain: the longest per step (the paper), one per window
+    /// in cross-track order (ours, the default), or the longest per window.
     pub graph: A2aGraph,
 }
 
@@ -97,14 +98,14 @@ pub struct Acoustic {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum A2aGraph {
-    /// The paper (the default): the longest Hamiltonian path of each step's positions; the
+    /// The paper: the longest Hamiltonian path of each step's positions; the
     /// chain's order may change from one step to the next.
     PerStep,
     /// One chain for the whole window: the Hamiltonian path with the fewest (step, edge) pairs
     /// out of range or blocked, and the longest of those summed over the window's steps.
     Window,
     /// One chain for the whole window, in the order of the AUVs' cross-track offsets from the
-    /// USV's track (each link joins neighbouring lanes); ours.
+    /// USV's track (each link joins neighbouring lanes); ours, the default.
     Lanes,
 }
 
@@ -358,7 +359,8 @@ impl Default for Horizon {
         Horizon {
             steps: 20,
             dt: 100.0,
-            terminal_margin: false,
+            // ours: on, for the lanes chain's missions (docs/method.md, "P2")
+            terminal_margin: true,
         }
     }
 }
@@ -372,7 +374,8 @@ impl Default for Acoustic {
             resolution: 5.0,  // 𝓛_r: 5 m, a fifth of the synthetic grid cell
             los_shrink: 15.0, // ours: half of d_t per round
             los_rounds: 5,
-            graph: A2aGraph::PerStep,
+            // ours: one chain per window in lane order (docs/method.md, "Step 2")
+            graph: A2aGraph::Lanes,
         }
     }
 }

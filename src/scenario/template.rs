@@ -29,9 +29,9 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "horizon.terminal_margin" => {
             "Ours: each window that another follows ends with every AUV's coast point inside \
              the grid by the distance it needs to slow below v_min (so the next window cannot \
-             start with an AUV at the edge moving out). Off by default: over 5 windows it cost \
-             7 % of the explored area with per-step chains; with acoustic.graph = \"lanes\" \
-             missions need it."
+             start with an AUV at the edge moving out). On by default: missions with \
+             acoustic.graph = \"lanes\" need it; with \"per_step\" chains it cost 7 % of the \
+             explored area over 5 windows."
         }
         "acoustic" => "Acoustic links: A2U (AUV–USV) and A2A (AUV–AUV) communication.",
         "acoustic.sonar_range" => {
@@ -59,11 +59,11 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              lines 17–22). 1 to 100."
         }
         "acoustic.graph" => {
-            "How Step 2 (P4) picks the A2A chain: \"per_step\" (the paper: the longest \
-             Hamiltonian path of each step), \"lanes\" (ours: one chain per window, the AUVs \
-             in cross-track order; explores more and is faster at N ≥ 20, but over multi-window \
-             missions of 20 AUVs it explores less, see BENCHMARKS.md) or \"window\" (ours: \
-             one chain per window, the longest summed over its steps)."
+            "How Step 2 (P4) picks the A2A chain: \"lanes\" (ours, the default: one chain per \
+             window, the AUVs in cross-track order; explores more, is faster at N ≥ 20 and \
+             stops nearer the converged optimum, see BENCHMARKS.md), \"per_step\" (the \
+             paper: the longest Hamiltonian path of each step) or \"window\" (ours: one chain \
+             per window, the longest summed over its steps)."
         }
         "auv" => {
             "AUV limits, and the coefficients of the simplified dynamics, eqs. (5)–(8): \

@@ -1,8 +1,8 @@
 //! Step 2 of Section IV-A: the acoustic graph of every step, from Step 1's positions
 //! (Algorithm 1, lines 13–16): P3 picks the A2U link (the AUV nearest the USV, `p3_a2u`), P4
-//! the A2A graph, a Hamiltonian path: by default the paper's longest path of each step
-//! (`p4_hamiltonian`), or one chain for the window (`p4_window`, `acoustic.graph = "lanes"` or
-//! `"window"`).
+//! the A2A graph, a Hamiltonian path: by default one chain for the window in lane order
+//! (`p4_window`, `acoustic.graph = "lanes"`, or the longest, `"window"`), or the paper's
+//! longest path of each step (`p4_hamiltonian`, `"per_step"`).
 //!
 //! Departure: over a grid with obstacles, P4 avoids A2A edges that cross an obstacle cell
 //! (NODATA or land, `Seafloor::segment_obstacle`): among the Hamiltonian paths with the fewest

@@ -4,7 +4,7 @@
 //! USV too: past the edge, OF1_8 would drag the team off the map).
 //!
 //! Ours, for the receding horizon: a terminal margin from the grid's edge, with
-//! `horizon.terminal_margin` (off by default) in every window but a mission's last
+//! `horizon.terminal_margin` (on by default) in every window but a mission's last
 //! (`TeamProblem::with_terminal`). The next window starts from this one's last
 //! state, and an AUV's momentum carries it on: with the default REMUS model, a step of
 //! δ = 100 s moves it pv·V\[K\] ≈ 6.5 s × V\[K\] before any input acts. An AUV that ends a
