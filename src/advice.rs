@@ -90,20 +90,14 @@ fn unconverged(windows: &[Window], s: &Scenario) -> Vec<String> {
     out
 }
 
-/// How far a formation could go in one window, metres: K·δ at the slower of the USV's limit
-/// and the AUVs' (the team moves together).
-fn reach(s: &Scenario) -> f64 {
-    s.horizon.steps as f64 * s.horizon.dt * s.usv.max_speed.min(s.auv.max_speed)
-}
-
-/// The warning for a window whose USV ends less than [`BARELY_MOVES`] of [`reach`] from its
+/// The warning for a window whose USV ends less than [`BARELY_MOVES`] of [`Scenario::reach`] from its
 /// start although its objective asks it to move: away from its track, or towards a destination
 /// it has not reached. `at_edge`: the grid's edge explains it (its own warning follows).
 fn barely_moves(w: &Window, s: &Scenario, at_edge: bool) -> Option<String> {
     let usv = &w.final_.usv.position;
     let (first, last) = (usv.first()?, usv.last()?);
     let moved = (last[0] - first[0]).hypot(last[1] - first[1]);
-    let reach = reach(s);
+    let reach = s.reach();
     let weights = &s.weights;
     let (wanted, term) = match s.usv.objective {
         UsvObjective::Away => (
@@ -140,11 +134,18 @@ fn barely_moves(w: &Window, s: &Scenario, at_edge: bool) -> Option<String> {
         }
         crate::scenario::WeightScaling::PerAuv => "",
     };
+    let per_m2 = match (s.usv.objective, s.weights.w8_scaling) {
+        (UsvObjective::Away, crate::scenario::W8Scaling::None) => {
+            "; with weights.w8_scaling = \"none\" OF1_8 is per m², so a short or slow window \
+             is paid little for going its way (\"reach\" pays it as the paper's 3 km window)"
+        }
+        _ => "",
+    };
     Some(format!(
         "window {}: the team barely moves: the USV ends {moved:.0} m from where the window \
          started, {:.0} % of the {wanted:.0} m it could go; the team's input energy \
          (weights.w1 = {}) and height above the floor (weights.w2 = {}) outweigh {term}: raise \
-         the latter or lower the former{scaling}",
+         the latter or lower the former{scaling}{per_m2}",
         w.index,
         100.0 * moved / wanted,
         weights.w1,

@@ -298,7 +298,8 @@ pub struct ObjectiveTerms {
     #[serde(default)]
     pub band: f64,
     /// (w1·energy + w2·(height or depth))/N − w8·usv (away) or + w8_2·usv (destination), with
-    /// /N only for `weights.scaling = "per_auv"` (the default); in Step 3
+    /// /N only for `weights.scaling = "per_auv"` (the default), w8 as `Scenario::w8` scales it
+    /// (`weights.w8_scaling`); in Step 3
     /// also − w5·spread(/N) + w3·(A2U band) + w4·(A2A band).
     pub total: f64,
 }

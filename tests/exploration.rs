@@ -5,7 +5,7 @@ use shoal::check::check_plan;
 use shoal::linearise::nearest_on_track;
 use shoal::mission::scenario_floor;
 use shoal::plan::Plan;
-use shoal::scenario::{AwayFrom, Scenario, WeightScaling};
+use shoal::scenario::{AwayFrom, Scenario, W8Scaling, WeightScaling};
 use shoal::seafloor::Seafloor;
 
 fn plan(s: &Scenario) -> (Plan, Seafloor) {
@@ -52,14 +52,57 @@ fn regression_a_team_of_ten_moves_as_far_as_five_and_explores_more() {
     assert!(five.warnings.is_empty() && ten.warnings.is_empty());
 }
 
+/// Regression (issue 13's sweep, draw 1002: 9 AUVs of 0.51 m/s, 12 steps of 31 s): weighed
+/// per m², OF1_8 paid a window that can go R = 191 m about 250× less for going all of it than
+/// the paper's 3 km window, and the USV ended 11 m from its start (13 of 37 draws had such a
+/// window). With `weights.w8_scaling = "reach"` it is paid as the paper's window is, and the
+/// team makes its way: the same scenario with 3 AUVs goes 332 m (94 m per m²) and sweeps
+/// 0.030 km² (0.011).
+#[test]
+fn regression_a_short_window_of_slow_auvs_barely_moved() {
+    let mut s = team(3);
+    s.seed = 430134;
+    s.horizon.steps = 12;
+    s.horizon.dt = 31.0;
+    s.auv.max_speed = 0.5;
+    assert_eq!(s.weights.w8_scaling, W8Scaling::Reach);
+    let reach = s.reach();
+    assert!((reach - 186.0).abs() < 1e-9, "{reach}");
+    let (scaled, _) = plan(&s);
+    s.weights.w8_scaling = W8Scaling::None;
+    let (per_m2, _) = plan(&s);
+    assert!(usv_moved(&scaled, 0) > reach, "{}", usv_moved(&scaled, 0));
+    assert!(
+        usv_moved(&per_m2, 0) < 0.6 * reach,
+        "{}",
+        usv_moved(&per_m2, 0)
+    );
+    assert!(
+        scaled.metrics.explored_area_km2 > 2.0 * per_m2.metrics.explored_area_km2,
+        "{} against {}",
+        scaled.metrics.explored_area_km2,
+        per_m2.metrics.explored_area_km2
+    );
+}
+
+/// The paper's window (K·δ = 2000 s at the USV's 1.5 m/s) is the reference reach: there w8
+/// weighs OF1_8 per m² under either scaling, so the default plan is the paper's weighting.
+#[test]
+fn the_paper_window_weighs_of1_8_per_square_metre() {
+    let s = Scenario::default();
+    assert_eq!(s.reach(), shoal::scenario::REFERENCE_REACH);
+    assert_eq!(s.w8(), s.weights.w8);
+}
+
 /// A team whose energy outweighs OF1_8 barely moves, and the plan says so, naming the weights
-/// to change (here the paper's sums with w1 = 10⁷ per (m/s²)²; with 10⁶ the lanes chain's
-/// spread reward alone moves the USV 207 m, past the warning's 10 %).
+/// to change (here the paper's sums and OF1_8 per m², with w1 = 10⁷ per (m/s²)²; with 10⁶ the
+/// lanes chain's spread reward alone moves the USV 207 m, past the warning's 10 %).
 #[test]
 fn a_team_that_barely_moves_is_told_which_weight_to_change() {
     let mut s = team(3);
     s.horizon.steps = 10;
     s.weights.scaling = WeightScaling::Sum;
+    s.weights.w8_scaling = W8Scaling::None;
     s.weights.w1 = 1e7;
     let (p, _) = plan(&s);
     assert!(usv_moved(&p, 0) < 0.1 * 10.0 * 100.0 * 1.5);
@@ -68,7 +111,8 @@ fn a_team_that_barely_moves_is_told_which_weight_to_change() {
         w.contains("window 0: the team barely moves")
             && w.contains("weights.w1 = 10000000")
             && w.contains("weights.w8 = 0.001")
-            && w.contains("weights.scaling = \"sum\""),
+            && w.contains("weights.scaling = \"sum\"")
+            && w.contains("weights.w8_scaling = \"none\""),
         "{w}"
     );
 }

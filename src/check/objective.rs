@@ -124,7 +124,7 @@ impl Checker<'_> {
             DepthObjective::Depth => t.depth,
         };
         let usv = match self.s.usv.objective {
-            UsvObjective::Away => -wt.w8 * t.usv,
+            UsvObjective::Away => -self.s.w8() * t.usv, // weights.w8_scaling
             UsvObjective::Destination => wt.w8_2 * t.usv,
         };
         let per_auv = wt.per_auv(self.s.team.auvs); // weights.scaling

@@ -254,6 +254,44 @@ pub struct Weights {
     pub w8_2: f64,
     /// Whether w1, w2 and w5 weigh the team's sums per AUV (default) or as the paper's sums.
     pub scaling: WeightScaling,
+    /// Whether w8 weighs OF1_8 in units of the window's reach (default) or per m² (the paper).
+    pub w8_scaling: W8Scaling,
+}
+
+/// How w8 weighs OF1_8 (ours; the paper gives no weights).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum W8Scaling {
+    /// OF1_8 measured in units of the window's reach R = K·δ·min(V_USV, V_AUV)
+    /// ([`Scenario::reach`]) and weighed as w8·R₀²·(d/R)², R₀ = [`REFERENCE_REACH`]: the same
+    /// as per m² on the paper's window (R = R₀), and a window that can go R metres is paid
+    /// alike for going all of it whatever R is. Per m², a window of 12 steps of 31 s whose
+    /// AUVs can go 0.5 m/s (R = 191 m) was paid 250× less for going all the way, and the team
+    /// barely moved (issue 13's sweep).
+    Reach,
+    /// The paper's OF1_8 per m², whatever the window can reach.
+    None,
+}
+
+/// R₀, the reach of the paper's window (K = 20 steps of δ = 100 s at the USV's 1.5 m/s), metres:
+/// with `weights.w8_scaling = "reach"` w8 weighs OF1_8 as per m² on a window of this reach.
+pub const REFERENCE_REACH: f64 = 3000.0;
+
+impl Scenario {
+    /// R, how far a formation can go in one window, metres: K·δ at the slower of the USV's
+    /// limit and the AUVs' (the team moves together).
+    pub fn reach(&self) -> f64 {
+        self.horizon.steps as f64 * self.horizon.dt * self.usv.max_speed.min(self.auv.max_speed)
+    }
+
+    /// The weight of OF1_8 (the USV's squared distance, m²) in the objective: w8·(R₀/R)² with
+    /// `weights.w8_scaling = "reach"`, w8 with "none".
+    pub fn w8(&self) -> f64 {
+        match self.weights.w8_scaling {
+            W8Scaling::Reach => self.weights.w8 * (REFERENCE_REACH / self.reach()).powi(2),
+            W8Scaling::None => self.weights.w8,
+        }
+    }
 }
 
 impl Weights {
@@ -437,6 +475,7 @@ impl Default for Weights {
             w8: 1.0e-3,
             w8_2: 1.0e-3,
             scaling: WeightScaling::PerAuv,
+            w8_scaling: W8Scaling::Reach,
         }
     }
 }

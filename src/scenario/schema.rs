@@ -6,7 +6,7 @@
 //! expects, and to generate the template, so that no key or default value is written twice.
 
 use super::{
-    A2aGraph, AwayFrom, DepthObjective, Discretisation, Initial, Scenario, UsvObjective,
+    A2aGraph, AwayFrom, DepthObjective, Discretisation, Initial, Scenario, UsvObjective, W8Scaling,
     WeightScaling,
 };
 use crate::seafloor::Values;
@@ -244,6 +244,7 @@ pub(crate) fn enum_values(key: &str) -> Option<Vec<String>> {
         "usv.away_from" => Some(names(&[AwayFrom::Track, AwayFrom::Window])),
         "weights.of1_2" => Some(names(&[DepthObjective::Height, DepthObjective::Depth])),
         "weights.scaling" => Some(names(&[WeightScaling::PerAuv, WeightScaling::Sum])),
+        "weights.w8_scaling" => Some(names(&[W8Scaling::Reach, W8Scaling::None])),
         "seafloor.values" => Some(names(&[Values::Elevation, Values::Depth])),
         _ => None,
     }

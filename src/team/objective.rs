@@ -95,7 +95,7 @@ pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
 pub(super) fn weighted(p: &TeamProblem, t: &Terms) -> [f64; 6] {
     let w = &p.scenario.weights;
     let usv = match p.scenario.usv.objective {
-        UsvObjective::Away => -w.w8 * t.usv,
+        UsvObjective::Away => -p.scenario.w8() * t.usv, // weights.w8_scaling
         UsvObjective::Destination => w.w8_2 * t.usv,
     };
     let of1_2 = match w.of1_2 {
@@ -149,11 +149,12 @@ pub(super) fn model(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) {
             // (OF1_8)
             let p_ref = r.usv_p[kk];
             let (value, grad) = usv_away_track(p_ref, &p.track);
+            let w8 = s.w8(); // weights.w8_scaling
             for i in 0..2 {
                 m.p.push(pk + i, pk + i, 0.0);
-                m.q[pk + i] = w.w8 * grad[i];
+                m.q[pk + i] = w8 * grad[i];
             }
-            m.constant += w.w8 * (value - grad[0] * p_ref[0] - grad[1] * p_ref[1]);
+            m.constant += w8 * (value - grad[0] * p_ref[0] - grad[1] * p_ref[1]);
         }
         UsvObjective::Destination => {
             // w8_2·‖P[K] − P∞‖² (OF1_8_2), convex

@@ -128,7 +128,7 @@ fn objective(s: &Scenario, floor: &Seafloor, usv: &UsvPath, auvs: &[AuvPath]) ->
     let (usv_term, w_usv) = match s.usv.objective {
         UsvObjective::Away => (
             (pk[0] - p0[0]).powi(2) + (pk[1] - p0[1]).powi(2),
-            -s.weights.w8,
+            -s.w8(), // weights.w8_scaling
         ),
         UsvObjective::Destination => {
             let d = s.usv.destination;
