@@ -136,8 +136,9 @@ fn barely_moves(w: &Window, s: &Scenario, at_edge: bool) -> Option<String> {
     };
     let per_m2 = match (s.usv.objective, s.weights.w8_scaling) {
         (UsvObjective::Away, crate::scenario::W8Scaling::None) => {
-            "; with weights.w8_scaling = \"none\" OF1_8 is per m², so a short or slow window \
-             is paid little for going its way (\"reach\" pays it as the paper's 3 km window)"
+            "; with weights.w8_scaling = \"none\" OF1_8 is per m², so a window of few or \
+             short steps is paid little for the energy its way costs (\"energy\" pays it as \
+             the paper's window)"
         }
         _ => "",
     };

@@ -254,7 +254,8 @@ pub struct Weights {
     pub w8_2: f64,
     /// Whether w1, w2 and w5 weigh the team's sums per AUV (default) or as the paper's sums.
     pub scaling: WeightScaling,
-    /// Whether w8 weighs OF1_8 in units of the window's reach (default) or per m² (the paper).
+    /// Whether w8 weighs OF1_8 against the energy a distance costs in this window as in the
+    /// paper's (default) or per m² whatever the window (the paper).
     pub w8_scaling: W8Scaling,
 }
 
@@ -262,20 +263,23 @@ pub struct Weights {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum W8Scaling {
-    /// OF1_8 measured in units of the window's reach R = K·δ·min(V_USV, V_AUV)
-    /// ([`Scenario::reach`]) and weighed as w8·R₀²·(d/R)², R₀ = [`REFERENCE_REACH`]: the same
-    /// as per m² on the paper's window (R = R₀), and a window that can go R metres is paid
-    /// alike for going all of it whatever R is. Per m², a window of 12 steps of 31 s whose
-    /// AUVs can go 0.5 m/s (R = 191 m) was paid 250× less for going all the way, and the team
-    /// barely moved (issue 13's sweep).
-    Reach,
-    /// The paper's OF1_8 per m², whatever the window can reach.
+    /// w8 weighs OF1_8 against the input energy it takes to go a distance in the window as on
+    /// the paper's window: w8·(K₀·δ₀²)/(K·δ²), K₀ = [`REFERENCE_STEPS`], δ₀ =
+    /// [`REFERENCE_DT`] ([`Scenario::w8`]). An AUV holds a speed v against its damping c with
+    /// an input c·v at every step, so going d in K steps of δ costs K·(c·d/(K·δ))² =
+    /// c²·d²/(K·δ²) of OF1_1, and OF1_8 pays w8·d²: per m², a window of fewer or shorter steps
+    /// is paid less for the same energy (draw 1002 of issue 13's sweep, 12 steps of 31 s,
+    /// 17× less, and its USV ended 11 m from its start). On the paper's window the factor
+    /// is 1.
+    Energy,
+    /// The paper's OF1_8 per m², whatever the window's steps.
     None,
 }
 
-/// R₀, the reach of the paper's window (K = 20 steps of δ = 100 s at the USV's 1.5 m/s), metres:
-/// with `weights.w8_scaling = "reach"` w8 weighs OF1_8 as per m² on a window of this reach.
-pub const REFERENCE_REACH: f64 = 3000.0;
+/// K₀, the steps of the paper's window (Section V), for `weights.w8_scaling = "energy"`.
+pub const REFERENCE_STEPS: f64 = 20.0;
+/// δ₀, the paper's sampling time in seconds (Section V), for `weights.w8_scaling = "energy"`.
+pub const REFERENCE_DT: f64 = 100.0;
 
 impl Scenario {
     /// R, how far a formation can go in one window, metres: K·δ at the slower of the USV's
@@ -284,11 +288,14 @@ impl Scenario {
         self.horizon.steps as f64 * self.horizon.dt * self.usv.max_speed.min(self.auv.max_speed)
     }
 
-    /// The weight of OF1_8 (the USV's squared distance, m²) in the objective: w8·(R₀/R)² with
-    /// `weights.w8_scaling = "reach"`, w8 with "none".
+    /// The weight of OF1_8 (the USV's squared distance, m²) in the objective: w8·(K₀·δ₀²)/(K·δ²)
+    /// with `weights.w8_scaling = "energy"`, w8 with "none".
     pub fn w8(&self) -> f64 {
         match self.weights.w8_scaling {
-            W8Scaling::Reach => self.weights.w8 * (REFERENCE_REACH / self.reach()).powi(2),
+            W8Scaling::Energy => {
+                let (k, dt) = (self.horizon.steps as f64, self.horizon.dt);
+                self.weights.w8 * REFERENCE_STEPS * REFERENCE_DT.powi(2) / (k * dt * dt)
+            }
             W8Scaling::None => self.weights.w8,
         }
     }
@@ -475,7 +482,7 @@ impl Default for Weights {
             w8: 1.0e-3,
             w8_2: 1.0e-3,
             scaling: WeightScaling::PerAuv,
-            w8_scaling: W8Scaling::Reach,
+            w8_scaling: W8Scaling::Energy,
         }
     }
 }

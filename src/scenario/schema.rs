@@ -244,7 +244,7 @@ pub(crate) fn enum_values(key: &str) -> Option<Vec<String>> {
         "usv.away_from" => Some(names(&[AwayFrom::Track, AwayFrom::Window])),
         "weights.of1_2" => Some(names(&[DepthObjective::Height, DepthObjective::Depth])),
         "weights.scaling" => Some(names(&[WeightScaling::PerAuv, WeightScaling::Sum])),
-        "weights.w8_scaling" => Some(names(&[W8Scaling::Reach, W8Scaling::None])),
+        "weights.w8_scaling" => Some(names(&[W8Scaling::Energy, W8Scaling::None])),
         "seafloor.values" => Some(names(&[Values::Elevation, Values::Depth])),
         _ => None,
     }

@@ -159,8 +159,9 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "weights.w6" => "w6 · OF1_6: number of A2A edges (fixed by Step 2, so a constant).",
         "weights.w7" => "w7 · OF1_7: number of A2U edges (fixed by Step 2, so a constant).",
         "weights.w8" => {
-            "w8 · OF1_8: squared distance of the USV from its start (rewarded), per m² on a \
-             window that can reach 3000 m (see w8_scaling). Used when usv.objective = \"away\"."
+            "w8 · OF1_8: squared distance of the USV from its start (rewarded), per m² on the \
+             paper's window of 20 steps of 100 s (see w8_scaling). Used when usv.objective = \
+             \"away\"."
         }
         "weights.w8_2" => {
             "w8_2 · OF1_8_2: squared distance of the USV to usv.destination, per m². Used when \
@@ -172,10 +173,11 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              at every N; \"sum\": the paper's sums, under which a bigger team moves less."
         }
         "weights.w8_scaling" => {
-            "\"reach\" (ours, default): w8 weighs OF1_8 as w8·(3000 m)²·(d/R)², R = K·δ·min(usv \
-             and auv max_speed) the distance the window can go, so a short or slow window is \
-             paid for going all of its way as the paper's window is for 3 km (per m² there, R = \
-             3000 m); \"none\": per m² (the paper), under which a short window barely moves."
+            "\"energy\" (ours, default): w8 weighs OF1_8 × (20·(100 s)²)/(K·δ²), so that going a \
+             distance in K steps of δ is worth its input energy (c²·d²/(K·δ²) for an AUV holding \
+             speed against its damping c) as on the paper's window, where the factor is 1; \
+             \"none\": per m² (the paper), under which a window of few or short steps barely \
+             moves."
         }
         "seafloor" => {
             "The seafloor Z(x, y), whose obstacles p_Ω^3D enter C1_12 / C1_13 (C2_2 in Step 1): \
