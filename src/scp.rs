@@ -215,7 +215,10 @@ where
     let mut previous: Option<P::Iterate> = None;
     let mut momentum = 1.0f64;
     let mut good_run = false;
-    for it in 0..settings.max_iterations {
+    // the limit counts the iterations of the log (the solves that ended), not the retries
+    // after numerical trouble: counting those stopped a window at "max_iterations" with 49
+    // entries of 50, and its plan failed `shoal check` (issue 13's sweep, draw 1056)
+    while iterations < settings.max_iterations {
         let next_momentum = 0.5 * (1.0 + (1.0 + 4.0 * momentum * momentum).sqrt());
         let beta = (momentum - 1.0) / next_momentum;
         let ahead = match &previous {
@@ -262,7 +265,7 @@ where
         } else {
             1.0
         };
-        let first = it == 0;
+        let first = iterations == 0;
         let scale = 1.0 + reference_eval.magnitude;
         let negligible = !first && predicted <= settings.tolerance * scale;
 
@@ -585,6 +588,27 @@ mod tests {
             (out.status, out.iterate),
             (ScpStatus::SolverTrouble, [3.0, 0.5])
         );
+    }
+
+    /// Regression (issue 13's sweep, draw 1056: `shoal check` failed a plan whose Step 3 was
+    /// "max_iterations" with 49 entries in its log of 50): retries after numerical trouble
+    /// counted against scp.max_iterations. The limit now counts the solves of the log; here
+    /// the first model's radius (0.5) fails twice before one solves, and the loop still logs
+    /// as many iterations as it is allowed.
+    #[test]
+    fn regression_retries_after_numerical_trouble_are_not_iterations() {
+        let settings = Scp {
+            max_iterations: 3,
+            ..settings()
+        };
+        let mut problem = Hyperbola {
+            solver: None,
+            trouble_above: 0.2,
+        };
+        let mut logged = 0;
+        let out = solve(&mut problem, [3.0, 0.5], &settings, &mut |_| logged += 1).unwrap();
+        assert_eq!(out.status, ScpStatus::MaxIterations);
+        assert_eq!((logged, out.iterations), (3, 3));
     }
 
     /// min a/2·‖x − t‖² − b/2·‖x‖² over x ∈ ℝ², b < a: the concave reward −b/2·‖x‖² is
