@@ -100,6 +100,14 @@ fn barely_moves(w: &Window, s: &Scenario, at_edge: bool) -> Option<String> {
     let reach = s.reach();
     let weights = &s.weights;
     let (wanted, term) = match s.usv.objective {
+        UsvObjective::Away if s.w8() != weights.w8 => (
+            reach,
+            format!(
+                "OF1_8 (move away, weights.w8 = {} × {:.3} for this window's K·δ², weights.w8_scaling)",
+                weights.w8,
+                s.w8() / weights.w8
+            ),
+        ),
         UsvObjective::Away => (
             reach,
             format!("OF1_8 (move away, weights.w8 = {})", weights.w8),

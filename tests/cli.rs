@@ -233,8 +233,8 @@ fn regression_an_unconverged_plan_says_so() {
     let mut s = small(1);
     s.windows = 1;
     s.scp.max_iterations = 1;
-    // OF1_8 per m² (the paper's weighting): this window of 8 steps, paid for its reach, goes
-    // past a tenth of it in one SCP iteration
+    // OF1_8 per m² (the paper's weighting): with weights.w8_scaling = "energy" this window of
+    // 8 steps weighs it 2.5× and goes past a tenth of its reach in one SCP iteration
     s.weights.w8_scaling = shoal::scenario::W8Scaling::None;
     let (p, _) = plan_and_check(&s).expect("plan");
     assert_eq!(p.windows[0].step1.status, "max_iterations");
