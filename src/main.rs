@@ -545,11 +545,19 @@ impl Report {
                 stage,
                 los_rounds,
                 out_of_band,
+                bridges,
             } => self.line(format!(
                 "  window {window}: step 3 (P5) {} after {} SCP iterations, {los_rounds} \
-                 line-of-sight round(s), {out_of_band} link-step(s) outside their band, in \
+                 line-of-sight round(s), {out_of_band} link-step(s) outside their band{}, in \
                  {:.3} s",
-                stage.status, stage.iterations, stage.solve_time_s
+                stage.status,
+                stage.iterations,
+                if bridges > 0 {
+                    format!(", {bridges} bridge(s)")
+                } else {
+                    String::new()
+                },
+                stage.solve_time_s
             )),
         }
     }

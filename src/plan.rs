@@ -199,6 +199,11 @@ pub struct LinkReport {
     /// Line-of-sight rounds of Algorithm 1, lines 18–22 (1 = the first P5 solve had LoS on
     /// every link).
     pub los_rounds: usize,
+    /// P5's bridges, `[k, i]`: at step k AUV i kept the USV in range and in line of sight
+    /// because the planned path could not be in range yet from the window's start (absent in
+    /// plans written before bridges).
+    #[serde(default)]
+    pub bridges: Vec<[usize; 2]>,
 }
 
 /// Mission metrics (per window, and over the mission in `Plan::metrics`).

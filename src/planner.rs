@@ -63,6 +63,8 @@ pub enum Progress<'a> {
         los_rounds: usize,
         /// Link-steps left outside their band.
         out_of_band: usize,
+        /// P5's bridges (`LinkReport::bridges`).
+        bridges: usize,
     },
 }
 
@@ -292,6 +294,7 @@ fn run(
             stage: &final_,
             los_rounds: out3.los_rounds,
             out_of_band: out3.out_of_band.len(),
+            bridges: p5.bridges().len(),
         });
         track.extend_from_slice(&out3.outcome.iterate.usv_p);
         (start, heading) = next_window(&out3.outcome.iterate, heading); // line 7
@@ -300,6 +303,7 @@ fn run(
             bands: out3.links.bands,
             out_of_band: out3.out_of_band,
             los_rounds: out3.los_rounds,
+            bridges: p5.bridges().into_iter().map(|(k, i)| [k, i]).collect(),
         };
         let times = [step1.solve_time_s, graph.solve_time_s, final_.solve_time_s];
         let params = metric_params(s);

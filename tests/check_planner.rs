@@ -373,6 +373,37 @@ fn regression_a_window_that_starts_at_the_grid_edge_plans() {
     assert_eq!(p.metrics.connected_fraction, 1.0);
 }
 
+/// Regression (issue 13's sweep, draw 1016: N = 2, d_s = 364 m, AUVs at 0.86 m/s behind a USV
+/// at 0.57 m/s): the two AUVs, path neighbours, started 640 m apart on either side of the USV,
+/// and window 0 was refused with "the acoustic chain breaks at window 0, step 3": nothing kept
+/// the far AUV in range of anyone while their edge closed, and the 10⁸ that the edge's
+/// unavoidable metres cost swamped the SCP's measure. P5 now keeps a bridge (the far AUV in
+/// range and in sight of the USV) at the steps where the edge cannot be in range yet
+/// (`team::bridges`), and prices only the metres a plan can avoid (`team::priced_band`).
+#[test]
+fn regression_path_neighbours_that_start_two_ranges_apart_keep_the_chain() {
+    let p = plans_and_passes(
+        &Draw {
+            seed: 278848,
+            windows: 1,
+            auvs: 2,
+            steps: 25,
+            dt: 29.915058175248028,
+            sonar_range: 363.5957364763227,
+            auv_speed: 0.8567973127601536,
+            usv_speed: 0.5705265967052706,
+            seamounts: 30,
+            valleys: 9,
+        }
+        .scenario(),
+    );
+    assert_eq!(p.metrics.connected_fraction, 1.0);
+    let bridges = &p.windows[0].links.bridges;
+    assert!(!bridges.is_empty());
+    // the bridges are the first steps', before the edge can close
+    assert!(bridges.iter().all(|&[k, _]| k < 10), "{bridges:?}");
+}
+
 /// `acoustic.graph = "lanes"` (issue 22, the default): one chain for the window, the AUVs in
 /// cross-track order, kept at every step where it can carry its links; the plan passes its
 /// check, and the team sweeps more than with the paper's per-step chains (seed 1: 0.717

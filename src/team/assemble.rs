@@ -8,12 +8,14 @@
 //! - zero cone: the dynamics C1_1 (`dynamics`);
 //! - nonnegative cone: C1_4 and the grid bounds (`bounds`), the linearised floor clearance C2_2
 //!   (`floor`), the USV's and the links' keep-out rows (`keep_out`, over a grid with obstacles),
-//!   C1_14's Turn rows (`heading`), the bands' lower ends (`links`), slacks ν ≥ 0;
+//!   C1_14's Turn rows (`heading`), the bands' lower ends (`links`), the bridges' line of sight
+//!   (`bridges`), slacks ν ≥ 0;
 //! - second-order cones: the speed limits (`speed`), C1_5/C1_6 (`ranges`), the trust region
-//!   (`trust`), C1_14's slow alternatives (`heading`), the bands' upper ends (`links`).
+//!   (`trust`), C1_14's slow alternatives (`heading`), the bands' upper ends (`links`), the
+//!   bridges' ranges (`bridges`).
 
 use super::model::Assembly;
-use super::{bounds, dynamics, floor, heading, keep_out, links, objective, ranges};
+use super::{bounds, bridges, dynamics, floor, heading, keep_out, links, objective, ranges};
 use super::{speed, spread, trust, TeamProblem};
 use crate::conic::Triplets;
 use crate::error::PlanError;
@@ -46,6 +48,7 @@ pub(super) fn assemble(
     heading::objective(p, &mut m, penalty);
     keep_out::objective(p, &mut m, penalty);
     links::objective(p, &mut m); // Step 3 only
+    bridges::objective(p, &mut m, penalty); // Step 3 only
     spread::objective(p, r, &mut m); // Step 3 only
 
     // ---- zero cone ----
@@ -73,6 +76,7 @@ pub(super) fn assemble(
         bounds::terminal(p, &mut m, n, &ext);
     }
     links::lower_rows(p, r, &mut m); // Step 3 only
+    bridges::rows(p, r, &mut m)?; // Step 3 only
     for n in 0..nn {
         for k in 1..=kk {
             m.nonnegative(l.floor_slack(n, k));
@@ -113,5 +117,6 @@ pub(super) fn assemble(
     }
     heading::cones(p, &pieces, &mut m);
     links::upper_cones(p, &mut m); // Step 3 only
+    bridges::cones(p, &mut m); // Step 3 only
     Ok(m)
 }

@@ -24,6 +24,7 @@ use super::model::{Assembly, INACTIVE};
 use super::{TeamProblem, OBSTACLE};
 use crate::error::PlanError;
 use crate::linearise::{floor_sample, lerp, segment_intervals};
+use crate::plan::Link;
 use crate::trajectory::Trajectory;
 
 /// Margin (metres) by which the USV keeps the keep-out field below the surface, and a link
@@ -32,7 +33,7 @@ use crate::trajectory::Trajectory;
 /// reference, as SCvx needs. With the margin in the model only, a violated reference looks
 /// `margin` × penalty worse to the model than to the measure, and once the penalty grows the
 /// model can predict no decrease at all: the USV was seen stuck in a hole so.
-const KEEP_OUT_MARGIN: f64 = 0.25;
+pub(super) const KEEP_OUT_MARGIN: f64 = 0.25;
 
 /// Line-of-sight rows per planned link and step (fewer than `FLOOR_ROWS`: links are at most d_s
 /// long, and there are N of them per step).
@@ -96,23 +97,38 @@ pub(super) fn los_rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Res
     };
     for k in 1..=l.k {
         for (li, &link) in set.links[k].iter().enumerate() {
-            let (a, b) = ends(r, k, link);
-            let (a, b) = (p.inside(a), p.inside(b));
-            let rows = sample_rows(p, a, b, KEEP_OUT_MARGIN, LOS_ROWS, false, None)?;
-            let (ca, cb) = (end_columns(l, k, Some(link.a)), end_columns(l, k, link.b));
-            for (t, c, rhs) in rows {
-                let row = m.row(rhs);
-                for i in 0..3 {
-                    if let Some(col) = ca[i] {
-                        m.a.push(row, col, (1.0 - t) * c[i]);
-                    }
-                    if let Some(col) = cb[i] {
-                        m.a.push(row, col, t * c[i]);
-                    }
-                }
-                m.a.push(row, l.los_slack(li, k), -1.0);
+            link_rows(p, r, m, k, link, l.los_slack(li, k))?;
+        }
+    }
+    Ok(())
+}
+
+/// The line-of-sight rows of `link` at step k, linearised about `r`, sharing the slack in
+/// column `slack` (a planned link's here, a bridge's in `bridges`).
+pub(super) fn link_rows(
+    p: &TeamProblem,
+    r: &Trajectory,
+    m: &mut Assembly,
+    k: usize,
+    link: Link,
+    slack: usize,
+) -> Result<(), PlanError> {
+    let l = p.layout;
+    let (a, b) = ends(r, k, link);
+    let (a, b) = (p.inside(a), p.inside(b));
+    let rows = sample_rows(p, a, b, KEEP_OUT_MARGIN, LOS_ROWS, false, None)?;
+    let (ca, cb) = (end_columns(l, k, Some(link.a)), end_columns(l, k, link.b));
+    for (t, c, rhs) in rows {
+        let row = m.row(rhs);
+        for i in 0..3 {
+            if let Some(col) = ca[i] {
+                m.a.push(row, col, (1.0 - t) * c[i]);
+            }
+            if let Some(col) = cb[i] {
+                m.a.push(row, col, t * c[i]);
             }
         }
+        m.a.push(row, slack, -1.0);
     }
     Ok(())
 }
@@ -193,7 +209,7 @@ pub(super) fn violations(p: &TeamProblem, t: &Trajectory) -> Vec<(f64, KeepOut)>
 /// keep-out field at the interior samples of 𝓛_r, where its rows are (its ends are the
 /// vehicles, held by their own constraints: an AUV may fly ε = 0 above the floor); none when
 /// a sample is off the grid (the whole segment's measure then applies).
-fn link_worst(p: &TeamProblem, a: [f64; 3], b: [f64; 3]) -> Option<(f64, [f64; 3])> {
+pub(super) fn link_worst(p: &TeamProblem, a: [f64; 3], b: [f64; 3]) -> Option<(f64, [f64; 3])> {
     let n = segment_intervals(a, b, p.scenario.acoustic.resolution);
     let mut worst = (f64::NEG_INFINITY, a);
     for j in 1..n {

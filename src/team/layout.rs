@@ -7,7 +7,8 @@
 //! k = 1..=K and planned link l, the slacks of its band: σ (above the upper end, C5_2/C5_3's
 //! "< d_s") and ν (below the lower end, "> d_s − d_t"). Over a grid with obstacles come next
 //! the slacks ν_u[1..=K] of the USV's keep-out rows; last, per planned link l and step k, the
-//! slack ν_los[l][k] of its line-of-sight rows (P5 only, over every grid).
+//! slack ν_los[l][k] of its line-of-sight rows (P5 only, over every grid); after them, per
+//! bridge b (P5's `bridges`), the slacks σ_b of its range and ν_b of its line of sight.
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -19,12 +20,17 @@ pub struct Layout {
     pub links: usize,
     /// Whether the grid has obstacles, so that the USV has keep-out rows and their slacks.
     pub obstacles: bool,
+    /// Bridges of the window (P5's `bridges`; 0 for P2), over all its steps.
+    pub bridges: usize,
 }
 
 impl Layout {
     const AUV_BLOCK: usize = 11;
 
     pub fn variables(&self) -> usize {
+        self.bridge_base() + 2 * self.bridges
+    }
+    fn bridge_base(&self) -> usize {
         self.los_base() + self.k * self.links
     }
     fn los_base(&self) -> usize {
@@ -74,6 +80,15 @@ impl Layout {
     pub fn los_slack(&self, l: usize, k: usize) -> usize {
         debug_assert!(l < self.links && k >= 1 && k <= self.k);
         self.los_base() + l * self.k + (k - 1)
+    }
+    /// σ_b: how far bridge b may exceed d_s.
+    pub fn bridge_slack(&self, b: usize) -> usize {
+        debug_assert!(b < self.bridges);
+        self.bridge_base() + 2 * b
+    }
+    /// ν_b: slack of bridge b's line-of-sight rows.
+    pub fn bridge_los_slack(&self, b: usize) -> usize {
+        self.bridge_slack(b) + 1
     }
     /// P_USV\[k\], k = 1..=K (2 entries).
     pub fn usv_p(&self, k: usize) -> usize {
@@ -128,6 +143,7 @@ mod tests {
             n: 2,
             links: 2,
             obstacles: true,
+            bridges: 1,
         };
         let d = l.scale(150.0);
         let mut positions = vec![false; l.variables()];
@@ -146,20 +162,21 @@ mod tests {
     /// Every index is used exactly once, for sizes including the edge cases K = 1 and N = 1.
     #[test]
     fn indices_tile_the_variable_vector() {
-        for (k, n, links, obstacles) in [
-            (1, 1, 0, false),
-            (1, 3, 3, true),
-            (2, 1, 1, false),
-            (20, 5, 0, true),
-            (20, 5, 5, false),
-            (20, 5, 5, true),
-            (7, 12, 12, false),
+        for (k, n, links, obstacles, bridges) in [
+            (1, 1, 0, false, 0),
+            (1, 3, 3, true, 1),
+            (2, 1, 1, false, 0),
+            (20, 5, 0, true, 0),
+            (20, 5, 5, false, 7),
+            (20, 5, 5, true, 3),
+            (7, 12, 12, false, 0),
         ] {
             let l = Layout {
                 k,
                 n,
                 links,
                 obstacles,
+                bridges,
             };
             let mut seen = vec![0u8; l.variables()];
             let mut mark = |i: usize, w: usize| (i..i + w).for_each(|j| seen[j] += 1);
@@ -194,9 +211,13 @@ mod tests {
                     mark(l.los_slack(li, s), 1);
                 }
             }
+            for b in 0..bridges {
+                mark(l.bridge_slack(b), 1);
+                mark(l.bridge_los_slack(b), 1);
+            }
             assert!(
                 seen.iter().all(|&c| c == 1),
-                "K={k} N={n} links={links} obstacles={obstacles}"
+                "K={k} N={n} links={links} obstacles={obstacles} bridges={bridges}"
             );
         }
     }

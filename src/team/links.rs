@@ -76,12 +76,14 @@ impl LinkSet {
     }
 
     /// The unweighted OF1_3 and OF1_4 of a trajectory: Σ [`priced_outside`] for the A2U links
-    /// and for the A2A links, k = 1..=K.
-    pub fn band_terms(&self, t: &Trajectory) -> (f64, f64) {
+    /// and for the A2A links, k = 1..=K, each band's upper end raised to the link's least
+    /// length `least[k][l]` (see [`priced_band`]).
+    pub fn band_terms(&self, t: &Trajectory, least: &[Vec<f64>]) -> (f64, f64) {
         let (mut a2u, mut a2a) = (0.0, 0.0);
         for k in 1..self.links.len().min(t.auv_p.first().map_or(0, Vec::len)) {
-            for (link, band) in self.links[k].iter().zip(&self.bands[k]) {
-                let off = priced_outside(length(t, k, *link), *band);
+            for (li, (link, band)) in self.links[k].iter().zip(&self.bands[k]).enumerate() {
+                let band = priced_band(*band, least_at(least, k, li));
+                let off = priced_outside(length(t, k, *link), band);
                 if link.b.is_none() {
                     a2u += off;
                 } else {
@@ -121,6 +123,24 @@ pub fn describe(link: Link) -> String {
 /// range and the chain breaks; below d_s − d_t the team only spreads less. With one price for
 /// both, P5 traded range for spread: at N = 15 (seed 1) the chain broke at step 14.
 pub const ABOVE_FACTOR: f64 = 100.0;
+
+/// The band whose metres OF1_3/OF1_4 price: `band` with its upper end raised to `least`, the
+/// least length the link can have at its step from the window's start (`bridges::least_lengths`).
+/// A link whose ends start far apart cannot be in range for its first steps whatever the plan;
+/// pricing the metres no plan can avoid at `ABOVE_FACTOR`·w made P5's objective 10⁸ (issue 13's
+/// draw 1016) and swamped every other term, the violations' penalties included. The band the
+/// plan records, and `links.out_of_band`, keep the paper's [d_s − d_t, d_s].
+pub fn priced_band(band: Band, least: f64) -> Band {
+    Band {
+        lo: band.lo,
+        hi: band.hi.max(least),
+    }
+}
+
+/// `least[k][li]`, 0 where not given.
+pub(super) fn least_at(least: &[Vec<f64>], k: usize, li: usize) -> f64 {
+    least.get(k).and_then(|l| l.get(li)).copied().unwrap_or(0.0)
+}
 
 /// `ABOVE_FACTOR`·(metres above the band) + (metres below it): what w3/w4 price.
 pub fn priced_outside(len: f64, band: Band) -> f64 {
@@ -193,28 +213,43 @@ pub(super) fn lower_rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) {
     }
 }
 
-/// Second-order cones: ‖P_a − P_b‖ ≤ hi + σ.
+/// Second-order cones: ‖P_a − P_b‖ ≤ hi + σ (hi raised to the link's least length, see
+/// [`priced_band`]).
 pub(super) fn upper_cones(p: &TeamProblem, m: &mut Assembly) {
     let Some(set) = &p.links else { return };
     let l = p.layout;
     for k in 1..=l.k {
         for (li, (&link, band)) in set.links[k].iter().zip(&set.bands[k]).enumerate() {
+            let band = priced_band(*band, least_at(&p.least, k, li));
             // tightened like C1_6, so the solver's residual cannot leave a link at the top of
             // its band a hair beyond d_s
-            let row = m.row(band.hi - RANGE_MARGIN);
-            m.a.push(row, l.band_upper_slack(li, k), -1.0);
-            let ca = end_columns(l, k, Some(link.a));
-            let cb = end_columns(l, k, link.b);
-            for c in 0..3 {
-                let row = m.row(0.0);
-                if let Some(col) = ca[c] {
-                    m.a.push(row, col, -1.0);
-                }
-                if let Some(col) = cb[c] {
-                    m.a.push(row, col, 1.0);
-                }
-            }
-            m.cones.push(SecondOrderConeT(4));
+            cone(
+                l,
+                m,
+                k,
+                link,
+                band.hi - RANGE_MARGIN,
+                l.band_upper_slack(li, k),
+            );
         }
     }
+}
+
+/// The cone ‖P_a − P_b‖ ≤ `hi` + σ of `link` at step k, σ in column `slack` (a planned link's
+/// upper end here, a bridge's range in `bridges`).
+pub(super) fn cone(l: Layout, m: &mut Assembly, k: usize, link: Link, hi: f64, slack: usize) {
+    let row = m.row(hi);
+    m.a.push(row, slack, -1.0);
+    let ca = end_columns(l, k, Some(link.a));
+    let cb = end_columns(l, k, link.b);
+    for c in 0..3 {
+        let row = m.row(0.0);
+        if let Some(col) = ca[c] {
+            m.a.push(row, col, -1.0);
+        }
+        if let Some(col) = cb[c] {
+            m.a.push(row, col, 1.0);
+        }
+    }
+    m.cones.push(SecondOrderConeT(4));
 }

@@ -13,6 +13,7 @@
 //! | `heading` | C1_14, heading rate, as a disjunction |
 //! | `keep_out` | the USV's keep-out rows (obstacle cells), P5's line of sight (C1_13) |
 //! | `links` | P5's link bands C5_2/C5_3, priced by OF1_3/OF1_4 |
+//! | `bridges` | P5's A2U links where the planned path cannot be in range yet |
 //! | `spread` | OF1_5 |
 //! | `objective` | OF2 (OF1_1, OF1_2, OF1_8 or OF1_8_2) and the objective's terms |
 //! | `trust` | SCvx's trust region |
@@ -29,6 +30,7 @@
 
 mod assemble;
 mod bounds;
+mod bridges;
 mod detour;
 mod dynamics;
 mod floor;
@@ -45,7 +47,9 @@ mod spread;
 mod trust;
 
 pub use layout::Layout;
-pub use links::{describe, ends, length, outside, priced_outside, LinkSet, ABOVE_FACTOR};
+pub use links::{
+    describe, ends, length, outside, priced_band, priced_outside, LinkSet, ABOVE_FACTOR,
+};
 pub use objective::Terms;
 
 use crate::conic::{ConicSolver, Pattern, SolveReport};
@@ -78,6 +82,10 @@ pub struct TeamProblem<'a> {
     heading: HeadingRule,
     /// P5's planned links and their bands (None for P2).
     links: Option<LinkSet>,
+    /// P5's bridges (`bridges`): empty for P2.
+    bridges: Vec<bridges::Bridge>,
+    /// Per step and planned link, the least length the start allows (`bridges::least_lengths`).
+    least: Vec<Vec<f64>>,
     /// The terminal margin (`bounds`): a window that another follows.
     terminal: bool,
     /// The points OF1_8 ("away") measures from: the USV's earlier path, then this window's
@@ -102,6 +110,7 @@ impl<'a> TeamProblem<'a> {
             n: scenario.team.auvs,
             links: 0,
             obstacles: floor.has_obstacles(),
+            bridges: 0,
         };
         TeamProblem {
             scenario,
@@ -114,6 +123,8 @@ impl<'a> TeamProblem<'a> {
             layout,
             heading: HeadingRule::of(scenario),
             links: None,
+            bridges: Vec::new(),
+            least: Vec::new(),
             terminal: false,
             solver: None,
         }
@@ -160,9 +171,13 @@ impl<'a> TeamProblem<'a> {
         &self.track
     }
 
-    /// The same window with P5's planned links (Step 3): adds the band slacks to the layout.
+    /// The same window with P5's planned links (Step 3): adds the band slacks to the layout,
+    /// and the bridges (`bridges`) where the links cannot be in range from the start yet.
     pub fn with_links(mut self, links: LinkSet) -> TeamProblem<'a> {
         self.layout.links = links.per_step();
+        self.bridges = bridges::needed(self.scenario, &self.start, &links);
+        self.least = bridges::least_lengths(self.scenario, &self.start, &links);
+        self.layout.bridges = self.bridges.len();
         self.links = Some(links);
         self.solver = None;
         self
@@ -214,6 +229,17 @@ impl<'a> TeamProblem<'a> {
     /// The seafloor's keep-out field.
     pub fn keep_out(&self) -> &Seafloor {
         self.keep_out
+    }
+
+    /// P5's bridges: (step, AUV) of each A2U link kept in range and in sight where the planned
+    /// path cannot be in range yet.
+    pub fn bridges(&self) -> Vec<(usize, usize)> {
+        self.bridges.iter().map(|b| (b.k, b.link.a)).collect()
+    }
+
+    /// Per step and planned link, the least length the window's start allows it.
+    pub fn least_lengths(&self) -> &[Vec<f64>] {
+        &self.least
     }
 
     /// P5's planned links and their bands (None for P2).
@@ -464,6 +490,10 @@ impl ScpProblem for TeamProblem<'_> {
             sum += v.max(0.0);
             worst = worst.max(v);
         }
+        for (v, _) in bridges::violations(self, t) {
+            sum += v;
+            worst = worst.max(v);
+        }
         let weighted = objective::weighted(self, &self.terms(t));
         Evaluation {
             objective: weighted.iter().sum(),
@@ -547,6 +577,11 @@ impl ScpProblem for TeamProblem<'_> {
         for (v, what) in keep_out::violations(self, t) {
             if v > worst.0 {
                 worst = (v, keep_out::detail(self, what));
+            }
+        }
+        for (bi, (v, at)) in bridges::violations(self, t).into_iter().enumerate() {
+            if v > worst.0 {
+                worst = (v, bridges::detail(self, bi, at));
             }
         }
         PlanError::Infeasible {

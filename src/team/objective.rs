@@ -65,7 +65,7 @@ pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
         .sum();
     let (spread, band_a2u, band_a2a) = match &p.links {
         Some(links) => {
-            let (a2u, a2a) = links.band_terms(t);
+            let (a2u, a2a) = links.band_terms(t, &p.least);
             (spread::value(links, t), a2u, a2a)
         }
         None => (0.0, 0.0, 0.0),
