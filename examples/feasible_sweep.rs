@@ -1,8 +1,9 @@
 //! Issue 13's sweep: scenarios drawn from the whole space users set (AUV and USV speed
 //! 0.2–3 m/s, N 1–25, K 2–40, δ 10–200 s, d_s 60–400 m, 1–4 windows, seeds, synthetic floors),
 //! each planned and, when a plan comes back, checked. One CSV row per draw on stdout: the
-//! draw, the outcome (`plan`, `error`, or `FAIL` for a plan that fails its check) and the
-//! error's text; the counts on stderr at the end.
+//! draw, the outcome (`plan`, `error`, or `FAIL` for a plan that fails its check), the stages
+//! of a plan that did not converge ("w1 step3 max_iterations") and the error's text or the
+//! plan's warnings; the counts on stderr at the end.
 //!
 //! Run: cargo run --release --example feasible_sweep -- DRAWS [FIRST_DRAW]
 //! (draw i uses seed i of the generator, so two processes can split a sweep by FIRST_DRAW).
@@ -54,16 +55,27 @@ fn main() {
         .collect();
     let draws = args.first().copied().unwrap_or(100);
     let first = args.get(1).copied().unwrap_or(0);
-    println!("draw,seed,auv_speed,usv_speed,auvs,steps,dt,ds,windows,outcome,seconds,detail");
+    println!(
+        "draw,seed,auv_speed,usv_speed,auvs,steps,dt,ds,windows,outcome,seconds,unconverged,detail"
+    );
     let (mut plans, mut errors, mut fails) = (0, 0, 0);
     for i in first..first + draws {
         let s = draw(i);
         let clock = std::time::Instant::now();
+        // the stages that did not converge, "w1 step3 max_iterations"
+        let mut unconverged = Vec::new();
         let outcome = match mission::scenario_floor(&s, std::path::Path::new(".")) {
             Err(e) => ("error", e.to_string()),
             Ok((floor, _)) => match Planner::new(&s, &floor).run() {
                 Err(e) => ("error", e.to_string()),
                 Ok(p) => {
+                    for w in &p.windows {
+                        for (step, st) in [("step1", &w.step1), ("step3", &w.final_)] {
+                            if st.status != "converged" {
+                                unconverged.push(format!("w{} {step} {}", w.index, st.status));
+                            }
+                        }
+                    }
                     let r = shoal::check(&p, &floor);
                     if r.passed() {
                         ("plan", p.warnings.join(" | "))
@@ -80,7 +92,7 @@ fn main() {
             _ => fails += 1,
         }
         println!(
-            "{i},{},{:.3},{:.3},{},{},{:.1},{:.1},{},{},{:.2},\"{}\"",
+            "{i},{},{:.3},{:.3},{},{},{:.1},{:.1},{},{},{:.2},\"{}\",\"{}\"",
             s.seed,
             s.auv.max_speed,
             s.usv.max_speed,
@@ -91,6 +103,7 @@ fn main() {
             s.windows,
             outcome.0,
             clock.elapsed().as_secs_f64(),
+            unconverged.join(" | "),
             outcome.1.replace('"', "'")
         );
     }
