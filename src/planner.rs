@@ -289,12 +289,13 @@ fn run(
             });
         })?;
         let final_ = stage_record(&p5, &out3.outcome, trace, clock.elapsed().as_secs_f64());
+        let bridges = p5.bridges();
         progress(Progress::Step3 {
             window: w,
             stage: &final_,
             los_rounds: out3.los_rounds,
             out_of_band: out3.out_of_band.len(),
-            bridges: p5.bridges().len(),
+            bridges: bridges.len(),
         });
         track.extend_from_slice(&out3.outcome.iterate.usv_p);
         (start, heading) = next_window(&out3.outcome.iterate, heading); // line 7
@@ -303,7 +304,7 @@ fn run(
             bands: out3.links.bands,
             out_of_band: out3.out_of_band,
             los_rounds: out3.los_rounds,
-            bridges: p5.bridges().into_iter().map(|(k, i)| [k, i]).collect(),
+            bridges,
         };
         let times = [step1.solve_time_s, graph.solve_time_s, final_.solve_time_s];
         let params = metric_params(s);

@@ -22,8 +22,8 @@
 //! measure. The plan's links stay Step 2's path (and `shoal check` verifies connectivity
 //! through any links in range and in sight, as it always has).
 
-use super::keep_out::{link_rows, link_worst, KEEP_OUT_MARGIN};
-use super::links::{cone, ends, LinkSet};
+use super::keep_out::{link_rows, link_violation};
+use super::links::{cone, dist2, ends, LinkSet};
 use super::model::Assembly;
 use super::ranges::RANGE_MARGIN;
 use super::TeamProblem;
@@ -57,7 +57,7 @@ fn node(start: &Start, i: usize) -> [f64; 3] {
 }
 
 fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt()
+    dist2(a, b).sqrt()
 }
 
 /// The nodes (0 the USV, i + 1 AUV i) at the ends of a link.
@@ -176,20 +176,17 @@ pub(super) fn cones(p: &TeamProblem, m: &mut Assembly) {
     }
 }
 
-/// Per bridge, its true violation in metres (beyond d_s, plus the line of sight's shortfall
-/// of `KEEP_OUT_MARGIN`) and the point where the sight is worst.
+/// Per bridge, its true violation in metres (beyond d_s less `RANGE_MARGIN`, as the model's
+/// cone: the model and the measure agree at the reference, as SCvx needs; plus the line of
+/// sight's shortfall) and the point where the sight is worst.
 pub(super) fn violations(p: &TeamProblem, t: &Trajectory) -> Vec<(f64, [f64; 3])> {
-    let ds = p.scenario.acoustic.sonar_range;
+    let hi = p.scenario.acoustic.sonar_range - RANGE_MARGIN;
     p.bridges
         .iter()
         .map(|bridge| {
             let (a, b) = ends(t, bridge.k, bridge.link);
-            let range = (distance(a, b) - ds).max(0.0);
-            let (sight, at) = link_worst(p, a, b).unwrap_or_else(|| {
-                let (clearance, at) = p.keep_out_clearance(a, b);
-                (KEEP_OUT_MARGIN - clearance, at)
-            });
-            (range + sight.max(0.0), at)
+            let (sight, at) = link_violation(p, a, b);
+            ((distance(a, b) - hi).max(0.0) + sight.max(0.0), at)
         })
         .collect()
 }

@@ -33,7 +33,7 @@ use crate::trajectory::Trajectory;
 /// reference, as SCvx needs. With the margin in the model only, a violated reference looks
 /// `margin` × penalty worse to the model than to the measure, and once the penalty grows the
 /// model can predict no decrease at all: the USV was seen stuck in a hole so.
-pub(super) const KEEP_OUT_MARGIN: f64 = 0.25;
+const KEEP_OUT_MARGIN: f64 = 0.25;
 
 /// Line-of-sight rows per planned link and step (fewer than `FLOOR_ROWS`: links are at most d_s
 /// long, and there are N of them per step).
@@ -197,7 +197,7 @@ pub(super) fn violations(p: &TeamProblem, t: &Trajectory) -> Vec<(f64, KeepOut)>
         if let Some(set) = &p.links {
             for (li, &link) in set.links[k].iter().enumerate() {
                 let (a, b) = ends(t, k, link);
-                let (v, at) = link_worst(p, a, b).unwrap_or_else(|| worst(a, b));
+                let (v, at) = link_violation(p, a, b);
                 out.push((v, KeepOut::Link { k, li, at }));
             }
         }
@@ -205,11 +205,21 @@ pub(super) fn violations(p: &TeamProblem, t: &Trajectory) -> Vec<(f64, KeepOut)>
     out
 }
 
+/// The line-of-sight violation of the link a → b (a planned link's here, a bridge's in
+/// `bridges`): [`link_worst`] at its interior samples, or the whole segment's measure when a
+/// sample is off the grid; and where it is worst.
+pub(super) fn link_violation(p: &TeamProblem, a: [f64; 3], b: [f64; 3]) -> (f64, [f64; 3]) {
+    link_worst(p, a, b).unwrap_or_else(|| {
+        let (clearance, at) = p.keep_out_clearance(a, b);
+        (KEEP_OUT_MARGIN - clearance, at)
+    })
+}
+
 /// A link's line-of-sight violation, `KEEP_OUT_MARGIN` less its least clearance over the
 /// keep-out field at the interior samples of 𝓛_r, where its rows are (its ends are the
 /// vehicles, held by their own constraints: an AUV may fly ε = 0 above the floor); none when
 /// a sample is off the grid (the whole segment's measure then applies).
-pub(super) fn link_worst(p: &TeamProblem, a: [f64; 3], b: [f64; 3]) -> Option<(f64, [f64; 3])> {
+fn link_worst(p: &TeamProblem, a: [f64; 3], b: [f64; 3]) -> Option<(f64, [f64; 3])> {
     let n = segment_intervals(a, b, p.scenario.acoustic.resolution);
     let mut worst = (f64::NEG_INFINITY, a);
     for j in 1..n {

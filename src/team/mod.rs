@@ -231,10 +231,10 @@ impl<'a> TeamProblem<'a> {
         self.keep_out
     }
 
-    /// P5's bridges: (step, AUV) of each A2U link kept in range and in sight where the planned
+    /// P5's bridges: [step, AUV] of each A2U link kept in range and in sight where the planned
     /// path cannot be in range yet.
-    pub fn bridges(&self) -> Vec<(usize, usize)> {
-        self.bridges.iter().map(|b| (b.k, b.link.a)).collect()
+    pub fn bridges(&self) -> Vec<[usize; 2]> {
+        self.bridges.iter().map(|b| [b.k, b.link.a]).collect()
     }
 
     /// Per step and planned link, the least length the window's start allows it.
