@@ -11,7 +11,7 @@
 //!   C1_14's Turn rows (`heading`), the bands' lower ends (`links`), the bridges' line of sight
 //!   (`bridges`), slacks ν ≥ 0;
 //! - second-order cones: the speed limits (`speed`), C1_5/C1_6 (`ranges`), the trust region
-//!   (`trust`), C1_14's slow alternatives (`heading`), the bands' upper ends (`links`), the
+//!   and the AUVs' squared steps τ (`trust`), C1_14's slow alternatives (`heading`), the bands' upper ends (`links`), the
 //!   bridges' ranges (`bridges`).
 
 use super::model::Assembly;
@@ -45,6 +45,7 @@ pub(super) fn assemble(
     // ---- objective ----
     objective::model(p, r, &mut m);
     floor::objective(p, &mut m, penalty);
+    trust::objective(p, &mut m);
     heading::objective(p, &mut m, penalty);
     keep_out::objective(p, &mut m, penalty);
     links::objective(p, &mut m); // Step 3 only
@@ -66,7 +67,7 @@ pub(super) fn assemble(
     for k in 1..=kk {
         bounds::grid(&mut m, l.usv_p(k), &ext);
     }
-    floor::rows(p, r, &mut m)?;
+    floor::rows(p, r, &mut m, radius)?;
     keep_out::usv_rows(p, r, &mut m)?; // over a grid with obstacles
     keep_out::los_rows(p, r, &mut m)?; // Step 3, over every grid
     let pieces = heading::pieces(p, r);
@@ -102,6 +103,7 @@ pub(super) fn assemble(
             speed::auv(p, &mut m, n, k);
             ranges::auv(p, &mut m, n, k);
             trust::auv(p, &mut m, r, radius, n, k);
+            trust::auv_cone(p, &mut m, r, n, k);
         }
     }
     if l.obstacles {

@@ -42,6 +42,11 @@ pub(super) fn apart(a: [f64; 3], b: [f64; 3], n: usize) -> usize {
     }
 }
 
+/// Least distance (m) at which [`curvature`] measures the floor's departure from its tangent
+/// plane: below about a grid cell the departure is the bilinear cells' kinks, which a step of a
+/// few metres does not see.
+const CURVATURE_MIN_DISTANCE: f64 = 5.0;
+
 /// The floor slacks' price: the SCP's penalty λ per metre.
 pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
     let l = p.layout;
@@ -52,6 +57,34 @@ pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
     }
 }
 
+/// How far the field bends up from its tangent plane about (x, y) within `radius`: the least
+/// L ≥ 0 with Z(x + d) ≤ Z(x) + ∇Z·d + ½L‖d‖², measured on eight directions at `radius`,
+/// `radius`/2 and `radius`/4 (not below `CURVATURE_MIN_DISTANCE`; points off the grid are
+/// skipped). Zero where the field is concave (a ridge, a valley's walls seen from outside).
+pub(super) fn curvature(
+    field: &crate::seafloor::Seafloor,
+    at: [f64; 3],
+    z: f64,
+    grad: [f64; 2],
+    radius: f64,
+) -> f64 {
+    let mut l = 0.0f64;
+    for d in [radius, 0.5 * radius, 0.25 * radius] {
+        if d < CURVATURE_MIN_DISTANCE {
+            break;
+        }
+        for i in 0..8 {
+            let (sin, cos) = (i as f64 * std::f64::consts::FRAC_PI_4).sin_cos();
+            let (dx, dy) = (d * cos, d * sin);
+            if let Ok(zd) = field.elevation(at[0] + dx, at[1] + dy) {
+                let e = zd - z - grad[0] * dx - grad[1] * dy;
+                l = l.max(2.0 * e / (d * d));
+            }
+        }
+    }
+    l
+}
+
 /// C2_2 linearised at the segment samples of the reference, over the keep-out field (so that
 /// no sample can lie over an obstacle cell). The samples are those of the paper's 𝓛_r
 /// (fractions j/n, j = 1..=n, n = ⌈horizontal length / r⌉); of these, the `FLOOR_ROWS` with the
@@ -60,7 +93,12 @@ pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
 /// violation over every sample, so a sample left out this iteration that the step makes
 /// critical is picked up at the next one, and convergence is only declared when all of them
 /// hold. Every row touches P[k−1] and P[k], so the pattern is fixed.
-pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<(), PlanError> {
+pub(super) fn rows(
+    p: &TeamProblem,
+    r: &Trajectory,
+    m: &mut Assembly,
+    radius: f64,
+) -> Result<(), PlanError> {
     let l = p.layout;
     // constraint tightening: the model asks for FLOOR_MARGIN more than ε, so the error of the
     // linearisation cannot leave the true constraint (measured with ε) violated at the end
@@ -89,29 +127,35 @@ pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Result<
                     Some(&j) => {
                         let sj = j as f64 / used as f64;
                         let (gv, grad) = floor_sample(p.keep_out, eps, pa, pb, sj)?;
+                        let ps = crate::linearise::lerp(pa, pb, sj);
+                        let bend = curvature(p.keep_out, ps, gv - eps + ps[2], grad, radius);
                         let gv = reference_margin(gv);
                         let c = [grad[0], grad[1], -1.0];
                         // ∇g·x − ν ≤ ∇g·x̄ − g(x̄)
-                        let ps = crate::linearise::lerp(pa, pb, sj);
                         let mut rhs = c[0] * ps[0] + c[1] * ps[1] + c[2] * ps[2] - gv;
                         if k == 1 {
                             let p0 = p.start.auvs[n].position;
                             rhs -= (1.0 - sj) * (c[0] * p0[0] + c[1] * p0[1] + c[2] * p0[2]);
                         }
-                        Some((sj, c, rhs))
+                        Some((sj, c, rhs, bend))
                     }
                     None => None,
                 };
-                let (sj, c, rhs) = row_data.unwrap_or((0.0, [0.0; 3], INACTIVE));
+                let (sj, c, rhs, bend) = row_data.unwrap_or((0.0, [0.0; 3], INACTIVE, 0.0));
+                // the curvature term ½L‖d‖² of the sample's horizontal step d, bounded by the
+                // ends' (‖d‖² ≤ (1 − s)‖d[k−1]‖² + s‖d[k]‖², convexity) through their τ
+                let bend = 0.5 * bend * p.scenario.acoustic.sonar_range;
                 let row = m.row(rhs);
                 if k > 1 {
                     for i in 0..3 {
                         m.a.push(row, l.auv_p(n, k - 1) + i, (1.0 - sj) * c[i]);
                     }
+                    m.a.push(row, l.auv_tau(n, k - 1), (1.0 - sj) * bend);
                 }
                 for i in 0..3 {
                     m.a.push(row, l.auv_p(n, k) + i, sj * c[i]);
                 }
+                m.a.push(row, l.auv_tau(n, k), sj * bend);
                 m.a.push(row, l.floor_slack(n, k), -1.0);
             }
         }
@@ -294,6 +338,67 @@ mod tests {
                 let rows = row_shortfall(p, t.auv_p[0][k - 1], t.auv_p[0][k]);
                 assert!((v - rows).abs() < 1e-9, "measure {v}, rows {rows}");
             });
+        }
+    }
+
+    /// A floor z = f(x, y) on a 2 m grid over [−200, 200]².
+    fn floor_of(f: impl Fn(f64, f64) -> f64) -> crate::seafloor::Seafloor {
+        let (n, d, o) = (201, 2.0, -200.0);
+        let z = (0..n * n)
+            .map(|i| f(o + d * (i % n) as f64, o + d * (i / n) as f64))
+            .collect();
+        let lattice = crate::seafloor::Lattice::new(n, n, o, o, d, d);
+        crate::seafloor::Seafloor::from_nodes(lattice, z, vec![false; n * n]).unwrap()
+    }
+
+    /// `curvature` recovers the bend of a bowl (Z = −100 + a·(x² + y²)/2: L = a), and finds none
+    /// on a plane or a ridge (Z concave: the tangent plane lies above the floor).
+    #[test]
+    fn curvature_is_the_bowls_and_zero_on_a_plane_or_a_ridge() {
+        let a = 0.01;
+        let at = |f: &crate::seafloor::Seafloor, x: f64, y: f64, radius: f64| {
+            let (z, grad) = f.elevation_and_gradient(x, y).unwrap();
+            curvature(f, [x, y, z], z, grad, radius)
+        };
+        let bowl = floor_of(|x, y| -100.0 + 0.5 * a * (x * x + y * y));
+        // at cell centres, where the bilinear grid's slope is the bowl's (at a node it is one
+        // cell's, and L comes out larger: conservative)
+        for (x, y, radius) in [(1.0, 1.0, 40.0), (31.0, -17.0, 80.0), (-55.0, 13.0, 20.0)] {
+            let l = at(&bowl, x, y, radius);
+            assert!(
+                (l - a).abs() < 0.05 * a,
+                "bowl at ({x}, {y}), Δ = {radius}: L = {l}"
+            );
+        }
+        let plane = floor_of(|x, y| -100.0 + 0.1 * x - 0.05 * y);
+        assert!(at(&plane, 11.0, 11.0, 50.0).abs() < 1e-9);
+        let ridge = floor_of(|x, _| -100.0 - 0.5 * a * x * x);
+        assert!(at(&ridge, 11.0, 11.0, 50.0).abs() < 1e-9);
+        // below the least distance nothing is measured
+        assert_eq!(at(&bowl, 1.0, 1.0, 4.0), 0.0);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// The curvature term bounds what it is for: on the bowl, from a cell centre, for any
+        /// step d of a sample within the trust radius, the tangent plane plus ½L‖d‖² is at or above the floor (the
+        /// linearised row so holds only where the true clearance does), and it agrees with the
+        /// floor's value and slope at the reference (d = 0: the term and its derivative vanish).
+        #[test]
+        fn the_curvature_term_majorises_the_bowl_within_the_trust_radius(
+            i in -30i32..30, j in -30i32..30,
+            angle in 0.0..std::f64::consts::TAU, frac in 0.0..1.0f64, radius in 10.0..80.0f64,
+        ) {
+            // at a cell centre (where the grid's slope is the bowl's), in any direction
+            let (x, y) = (2.0 * i as f64 + 1.0, 2.0 * j as f64 + 1.0);
+            let bowl = floor_of(|x, y| -100.0 + 0.005 * (x * x + y * y));
+            let (z, grad) = bowl.elevation_and_gradient(x, y).unwrap();
+            let l = curvature(&bowl, [x, y, z], z, grad, radius);
+            let (dx, dy) = (frac * radius * angle.cos(), frac * radius * angle.sin());
+            let model = z + grad[0] * dx + grad[1] * dy + 0.5 * l * (dx * dx + dy * dy);
+            let truth = bowl.elevation(x + dx, y + dy).unwrap();
+            // the bilinear grid departs from the bowl by at most a·h²/8 = 5·10⁻³ m per cell
+            prop_assert!(model >= truth - 0.02, "model {model}, floor {truth}");
         }
     }
 

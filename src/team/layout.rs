@@ -2,7 +2,9 @@
 //! dynamics are equality rows, so x holds every state, not only the inputs).
 //!
 //! Per window: USV positions P_USV[1..=K] and inputs U_USV[0..K), then one block per AUV holding
-//! P_n[1..=K], V_n[1..=K], U_n[0..K), the floor slacks ν_f[1..=K] and heading slacks ν_h[1..=K].
+//! P_n[1..=K], V_n[1..=K], U_n[0..K), the floor slacks ν_f[1..=K], heading slacks ν_h[1..=K]
+//! and the squared steps τ_n[1..=K] (τ ≥ ‖P_n,xy[k] − P̄_n,xy[k]‖² / d_s: the trust region
+//! and the floor rows' curvature term, `team::trust`).
 //! Step k = 0 is the window's fixed start and is not a variable. P5 (Step 3) appends, per step
 //! k = 1..=K and planned link l, the slacks of its band: σ (above the upper end, C5_2/C5_3's
 //! "< d_s") and ν (below the lower end, "> d_s − d_t"). Over a grid with obstacles come next
@@ -25,7 +27,7 @@ pub struct Layout {
 }
 
 impl Layout {
-    const AUV_BLOCK: usize = 11;
+    const AUV_BLOCK: usize = 12;
 
     pub fn variables(&self) -> usize {
         self.bridge_base() + 2 * self.bridges
@@ -43,8 +45,9 @@ impl Layout {
         4 * self.k + Self::AUV_BLOCK * self.k * self.n
     }
     /// The scale of every variable for the solver (x = scale ∘ x̃, `ConicSolver::with_scale`):
-    /// `position` (metres) for positions, 1 for the rest (velocities and inputs are of order
-    /// 10⁻² to 1 in SI units already, as are the slacks).
+    /// `position` (metres) for positions and the squared steps τ (metres, of the order of a
+    /// step), 1 for the rest (velocities and inputs are of order 10⁻² to 1 in SI
+    /// units already, as are the slacks).
     ///
     /// Unscaled, positions of 10²–10³ m sit beside inputs of 10⁻² m/s², and Clarabel's
     /// tolerances hold for its equilibrated problem, which leaves the small variables poorly
@@ -55,6 +58,7 @@ impl Layout {
             d[self.usv_p(k)..self.usv_p(k) + 2].fill(position);
             for n in 0..self.n {
                 d[self.auv_p(n, k)..self.auv_p(n, k) + 3].fill(position);
+                d[self.auv_tau(n, k)] = position;
             }
         }
         d
@@ -129,13 +133,19 @@ impl Layout {
         debug_assert!(k >= 1 && k <= self.k);
         self.base(n) + 10 * self.k + (k - 1)
     }
+    /// τ\[n\]\[k\]: the squared horizontal step of waypoint P_n\[k\] over d_s, k = 1..=K (its
+    /// epigraph: the trust region and the floor rows' curvature term, `team::trust`).
+    pub fn auv_tau(&self, n: usize, k: usize) -> usize {
+        debug_assert!(k >= 1 && k <= self.k);
+        self.base(n) + 11 * self.k + (k - 1)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// Positions, and only positions, are scaled.
+    /// Positions and the squared steps, and only those, are scaled.
     #[test]
     fn scale_marks_the_positions() {
         let l = Layout {
@@ -152,6 +162,7 @@ mod tests {
             positions[l.usv_p(k) + 1] = true;
             for n in 0..2 {
                 (0..3).for_each(|i| positions[l.auv_p(n, k) + i] = true);
+                positions[l.auv_tau(n, k)] = true;
             }
         }
         for (i, &p) in positions.iter().enumerate() {
@@ -192,6 +203,7 @@ mod tests {
                     mark(l.auv_v(a, s), 3);
                     mark(l.floor_slack(a, s), 1);
                     mark(l.heading_slack(a, s), 1);
+                    mark(l.auv_tau(a, s), 1);
                 }
                 for s in 0..k {
                     mark(l.auv_u(a, s), 3);
