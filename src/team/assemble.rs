@@ -103,7 +103,7 @@ pub(super) fn assemble(
             speed::auv(p, &mut m, n, k);
             ranges::auv(p, &mut m, n, k);
             trust::auv(p, &mut m, r, radius, n, k);
-            trust::auv_cone(p, &mut m, r, n, k);
+            trust::squared_steps(p, &mut m, r, n, k);
         }
     }
     if l.obstacles {

@@ -150,12 +150,12 @@ pub(super) fn rows(
                     for i in 0..3 {
                         m.a.push(row, l.auv_p(n, k - 1) + i, (1.0 - sj) * c[i]);
                     }
-                    m.a.push(row, l.auv_tau(n, k - 1), (1.0 - sj) * bend);
+                    m.a.push(row, l.start_square(n, k), (1.0 - sj) * bend);
                 }
                 for i in 0..3 {
                     m.a.push(row, l.auv_p(n, k) + i, sj * c[i]);
                 }
-                m.a.push(row, l.auv_tau(n, k), sj * bend);
+                m.a.push(row, l.end_square(n, k), sj * bend);
                 m.a.push(row, l.floor_slack(n, k), -1.0);
             }
         }

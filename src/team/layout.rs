@@ -3,8 +3,8 @@
 //!
 //! Per window: USV positions P_USV[1..=K] and inputs U_USV[0..K), then one block per AUV holding
 //! P_n[1..=K], V_n[1..=K], U_n[0..K), the floor slacks ν_f[1..=K], heading slacks ν_h[1..=K]
-//! and the squared steps τ_n[1..=K] (τ ≥ ‖P_n,xy[k] − P̄_n,xy[k]‖² / d_s: the trust region
-//! and the floor rows' curvature term, `team::trust`).
+//! and the squared steps of each segment's ends, τ_n[1..=K] then τ'_n[1..=K] (`team::trust`; the
+//! floor rows' curvature term).
 //! Step k = 0 is the window's fixed start and is not a variable. P5 (Step 3) appends, per step
 //! k = 1..=K and planned link l, the slacks of its band: σ (above the upper end, C5_2/C5_3's
 //! "< d_s") and ν (below the lower end, "> d_s − d_t"). Over a grid with obstacles come next
@@ -27,7 +27,7 @@ pub struct Layout {
 }
 
 impl Layout {
-    const AUV_BLOCK: usize = 12;
+    const AUV_BLOCK: usize = 13;
 
     pub fn variables(&self) -> usize {
         self.bridge_base() + 2 * self.bridges
@@ -58,7 +58,8 @@ impl Layout {
             d[self.usv_p(k)..self.usv_p(k) + 2].fill(position);
             for n in 0..self.n {
                 d[self.auv_p(n, k)..self.auv_p(n, k) + 3].fill(position);
-                d[self.auv_tau(n, k)] = position;
+                d[self.end_square(n, k)] = position;
+                d[self.start_square(n, k)] = position;
             }
         }
         d
@@ -133,11 +134,17 @@ impl Layout {
         debug_assert!(k >= 1 && k <= self.k);
         self.base(n) + 10 * self.k + (k - 1)
     }
-    /// τ\[n\]\[k\]: the squared horizontal step of waypoint P_n\[k\] over d_s, k = 1..=K (its
-    /// epigraph: the trust region and the floor rows' curvature term, `team::trust`).
-    pub fn auv_tau(&self, n: usize, k: usize) -> usize {
+    /// τ\[n\]\[k\] ≥ ‖P_n,xy\[k\] − P̄_n,xy\[k\]‖²/d_s, the squared step of the end of segment
+    /// k − 1 → k, for its floor rows, k = 1..=K (`team::trust`).
+    pub fn end_square(&self, n: usize, k: usize) -> usize {
         debug_assert!(k >= 1 && k <= self.k);
         self.base(n) + 11 * self.k + (k - 1)
+    }
+    /// τ'\[n\]\[k\]: the squared step of the start of segment k − 1 → k, P_n\[k − 1\] (for
+    /// k = 1, the fixed start's: 0), for its floor rows, k = 1..=K.
+    pub fn start_square(&self, n: usize, k: usize) -> usize {
+        debug_assert!(k >= 1 && k <= self.k);
+        self.base(n) + 12 * self.k + (k - 1)
     }
 }
 
@@ -162,7 +169,8 @@ mod tests {
             positions[l.usv_p(k) + 1] = true;
             for n in 0..2 {
                 (0..3).for_each(|i| positions[l.auv_p(n, k) + i] = true);
-                positions[l.auv_tau(n, k)] = true;
+                positions[l.end_square(n, k)] = true;
+                positions[l.start_square(n, k)] = true;
             }
         }
         for (i, &p) in positions.iter().enumerate() {
@@ -203,7 +211,8 @@ mod tests {
                     mark(l.auv_v(a, s), 3);
                     mark(l.floor_slack(a, s), 1);
                     mark(l.heading_slack(a, s), 1);
-                    mark(l.auv_tau(a, s), 1);
+                    mark(l.end_square(a, s), 1);
+                    mark(l.start_square(a, s), 1);
                 }
                 for s in 0..k {
                     mark(l.auv_u(a, s), 3);

@@ -2,10 +2,14 @@
 //! AUV's horizontal position per step, ‖P_n,xy[k] − P̄_n,xy[k]‖ ≤ Δ, and over a grid with
 //! obstacles, whose USV keep-out rows are linearised too, on the USV's.
 //!
-//! Each AUV waypoint also has its squared step τ_n[k] ≥ ‖P_xy − P̄_xy‖²/d_s (a second-order
-//! cone, [`auv_cone`]), which the floor rows price (their curvature term, `floor::rows`). (The
-//! trust region held as τ ≤ Δ²/d_s instead of its own cone saved a cone per waypoint, but at
-//! the largest radii a solve then took 52–85 interior-point iterations instead of 31–35.)
+//! Each segment k − 1 → k of an AUV also has the squared steps of its ends,
+//! τ ≥ ‖P_xy − P̄_xy‖²/d_s (second-order cones, [`squared_steps`]), which its floor rows price
+//! (their curvature term, `floor::rows`). Each segment has its own pair: one τ per waypoint,
+//! shared by the rows of the two segments that meet there, made the interior-point method's
+//! factor fill in (at N = 5, P5's multiply-adds per factorisation 2.61·10⁶ against 1.29·10⁶
+//! without τ; with a pair per segment, 1.31·10⁶). (The trust region held as τ ≤ Δ²/d_s
+//! instead of its own cone saved a cone, but at the largest radii a solve then took 52–85
+//! interior-point iterations instead of 31–35.)
 
 use super::model::Assembly;
 use super::TeamProblem;
@@ -25,7 +29,8 @@ pub(super) fn objective(p: &TeamProblem, m: &mut Assembly) {
     let l = p.layout;
     for n in 0..l.n {
         for k in 1..=l.k {
-            m.q[l.auv_tau(n, k)] = TAU_PRICE;
+            m.q[l.end_square(n, k)] = TAU_PRICE;
+            m.q[l.start_square(n, k)] = TAU_PRICE;
         }
     }
 }
@@ -48,17 +53,37 @@ pub(super) fn auv(
     m.cones.push(SecondOrderConeT(3));
 }
 
-/// τ_n[k] ≥ ‖P_n,xy[k] − P̄_n,xy[k]‖² / d_s, as the second-order cone
-/// ‖(2·(P_xy − P̄_xy), τ − d_s)‖ ≤ τ + d_s.
-pub(super) fn auv_cone(p: &TeamProblem, m: &mut Assembly, r: &Trajectory, n: usize, k: usize) {
+/// The squared step of P_n[k], τ ≥ ‖P_n,xy[k] − P̄_n,xy[k]‖² / d_s, for the rows of segment k
+/// (its end) and of segment k + 1 (its start, k < K); at k = 1 also the fixed start's (0) for
+/// segment 1.
+pub(super) fn squared_steps(p: &TeamProblem, m: &mut Assembly, r: &Trajectory, n: usize, k: usize) {
+    let l = p.layout;
+    square(p, m, l.end_square(n, k), Some((r, n, k)));
+    if k < l.k {
+        square(p, m, l.start_square(n, k + 1), Some((r, n, k)));
+    }
+    if k == 1 {
+        square(p, m, l.start_square(n, 1), None);
+    }
+}
+
+/// τ (column `tau`) ≥ ‖P_n,xy[k] − P̄_n,xy[k]‖² / d_s for `of` = (r, n, k), τ ≥ 0 for None, as
+/// the second-order cone ‖(2·(P_xy − P̄_xy), τ − d_s)‖ ≤ τ + d_s.
+fn square(p: &TeamProblem, m: &mut Assembly, tau: usize, of: Option<(&Trajectory, usize, usize)>) {
     let l = p.layout;
     let c = p.scenario.acoustic.sonar_range;
-    let tau = l.auv_tau(n, k);
     let row = m.row(c);
     m.a.push(row, tau, -1.0);
     for i in 0..2 {
-        let row = m.row(-2.0 * r.auv_p[n][k][i]);
-        m.a.push(row, l.auv_p(n, k) + i, -2.0);
+        match of {
+            Some((r, n, k)) => {
+                let row = m.row(-2.0 * r.auv_p[n][k][i]);
+                m.a.push(row, l.auv_p(n, k) + i, -2.0);
+            }
+            None => {
+                m.row(0.0);
+            }
+        }
     }
     let row = m.row(-c);
     m.a.push(row, tau, -1.0);
@@ -85,8 +110,8 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
-        /// The rows of `auv_cone`, evaluated (s = b − A·x) at a waypoint moved by d from the
-        /// reference, lie on the cone's boundary at τ = ‖d‖²/d_s and outside it below.
+        /// The rows of `squared_steps`, evaluated (s = b − A·x) at a waypoint moved by d from the
+        /// reference, lie on each cone's boundary at τ = ‖d‖²/d_s and outside it below.
         #[test]
         fn the_squared_step_cone_holds_tau_at_the_square(
             dx in -500.0..500.0f64, dy in -500.0..500.0f64, below in 0.0..0.999f64,
@@ -108,23 +133,29 @@ mod tests {
                 constant: 0.0,
                 groups: Vec::new(),
             };
-            auv_cone(&p, &mut m, &r, 0, 2);
+            squared_steps(&p, &mut m, &r, 0, 2);
+            // two cones: segment 2's end (τ) and segment 3's start (τ'), the same square
+            assert_eq!(m.b.len(), 8);
             let mut x = vec![0.0; l.variables()];
             let c = s.acoustic.sonar_range;
-            let at = |x: &mut Vec<f64>, tau: f64| {
+            let at = |x: &mut Vec<f64>, tau: f64, cone: usize| {
                 x[l.auv_p(0, 2)] = r.auv_p[0][2][0] + dx;
                 x[l.auv_p(0, 2) + 1] = r.auv_p[0][2][1] + dy;
-                x[l.auv_tau(0, 2)] = tau;
+                x[l.end_square(0, 2)] = tau;
+                x[l.start_square(0, 3)] = tau;
                 let mut slack = m.b.clone();
                 for i in 0..m.a.len() {
                     slack[m.a.rows[i]] -= m.a.vals[i] * x[m.a.cols[i]];
                 }
-                slack[0] - (slack[1].powi(2) + slack[2].powi(2) + slack[3].powi(2)).sqrt()
+                let s = &slack[4 * cone..4 * cone + 4];
+                s[0] - (s[1].powi(2) + s[2].powi(2) + s[3].powi(2)).sqrt()
             };
             let tau = (dx * dx + dy * dy) / c;
-            prop_assert!(at(&mut x, tau).abs() <= 1e-9 * (tau + c));
-            if tau > 1e-3 {
-                prop_assert!(at(&mut x, below * tau) < 0.0);
+            for cone in 0..2 {
+                prop_assert!(at(&mut x, tau, cone).abs() <= 1e-9 * (tau + c));
+                if tau > 1e-3 {
+                    prop_assert!(at(&mut x, below * tau, cone) < 0.0);
+                }
             }
         }
     }
