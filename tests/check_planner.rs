@@ -158,11 +158,11 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
                 u[2],
                 expected[j]
             );
-            // nothing drives horizontal motion: 1e-10 seen until the floor rows' squared steps
-            // (τ ≥ ‖d‖²/d_s, `team::trust`), 4e-7 m/s² since (a cone of a square resolves the
-            // step d to about the square root of the solver's tolerance)
+            // nothing drives horizontal motion: 1e-10 seen. (4e-7 m/s² while a flat floor's
+            // segments still bound their squared steps τ ≥ ‖d‖²/d_s by a cone: it resolves the
+            // step d to about the square root of the solver's tolerance; `team::trust::proximal`)
             assert!(
-                u[0].abs() <= 1e-6 && u[1].abs() <= 1e-6,
+                u[0].abs() <= 1e-8 && u[1].abs() <= 1e-8,
                 "AUV {a}, U[{j}] = {u:?}"
             );
         }

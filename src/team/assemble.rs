@@ -17,7 +17,6 @@
 use super::model::Assembly;
 use super::{bounds, bridges, dynamics, floor, heading, keep_out, links, objective, ranges};
 use super::{speed, spread, trust, TeamProblem};
-use crate::conic::Triplets;
 use crate::error::PlanError;
 use crate::trajectory::Trajectory;
 use clarabel::solver::SupportedConeT::NonnegativeConeT;
@@ -32,15 +31,7 @@ pub(super) fn assemble(
 ) -> Result<Assembly, PlanError> {
     let l = p.layout;
     let (kk, nn) = (l.k, l.n);
-    let mut m = Assembly {
-        p: Triplets::default(),
-        q: vec![0.0; l.variables()],
-        a: Triplets::default(),
-        b: Vec::new(),
-        cones: Vec::new(),
-        constant: 0.0,
-        groups: Vec::new(),
-    };
+    let mut m = Assembly::new(l.variables());
 
     // ---- objective ----
     objective::model(p, r, &mut m);
@@ -61,13 +52,19 @@ pub(super) fn assemble(
     for n in 0..nn {
         for k in 1..=kk {
             bounds::underwater(p, &mut m, n, k);
-            bounds::grid(&mut m, l.auv_p(n, k), &ext);
+            // the trust region keeps an AUV within Δ of the reference, horizontally
+            let a = r.auv_p[n][k];
+            bounds::grid(&mut m, l.auv_p(n, k), &ext, [a[0], a[1]], radius);
         }
     }
+    // the speed limit keeps the USV within k·δ·v_max of the window's start
+    let usv_reach = p.scenario.horizon.dt * p.scenario.usv.max_speed;
     for k in 1..=kk {
-        bounds::grid(&mut m, l.usv_p(k), &ext);
+        let reach = k as f64 * usv_reach;
+        bounds::grid(&mut m, l.usv_p(k), &ext, p.start.usv, reach);
     }
-    floor::rows(p, r, &mut m, radius)?;
+    let bent = floor::rows(p, r, &mut m, radius)?;
+    trust::proximal(p, &mut m, r, &bent);
     keep_out::usv_rows(p, r, &mut m)?; // over a grid with obstacles
     keep_out::los_rows(p, r, &mut m)?; // Step 3, over every grid
     let pieces = heading::pieces(p, r);
@@ -103,7 +100,7 @@ pub(super) fn assemble(
             speed::auv(p, &mut m, n, k);
             ranges::auv(p, &mut m, n, k);
             trust::auv(p, &mut m, r, radius, n, k);
-            trust::squared_steps(p, &mut m, r, n, k);
+            trust::squared_steps(p, &mut m, r, &bent, n, k);
         }
     }
     if l.obstacles {

@@ -16,11 +16,16 @@
 //! the grid by (pu/vu)·v_min per axis: from there it can slow below v_min in the next window's
 //! first step, turn freely and stay on the grid.
 
-use super::model::Assembly;
+use super::model::{Assembly, INACTIVE};
 use super::ranges::RANGE_MARGIN;
 use super::TeamProblem;
 use crate::seafloor::Extent;
 use crate::trajectory::Trajectory;
+
+/// How far (metres) beyond the reach of the hard rows a grid bound must lie to be padding: the
+/// trust-region and speed cones hold to the solver's feasibility tolerance (10⁻⁷ relative), far
+/// below this.
+const REDUNDANT_MARGIN: f64 = 1.0;
 
 /// How an infeasible C1_4 is named.
 const UNDERWATER: &str = "C1_4 (AUVs stay below the surface clearance)";
@@ -101,14 +106,79 @@ pub(super) fn underwater(p: &TeamProblem, m: &mut Assembly, n: usize, k: usize) 
     m.group(UNDERWATER, row);
 }
 
-/// x_min ≤ x ≤ x_max and y_min ≤ y ≤ y_max for the (x, y) at columns `col`, `col + 1`.
-pub(super) fn grid(m: &mut Assembly, col: usize, ext: &Extent) {
-    for (c, lo, hi) in [(col, ext.x_min, ext.x_max), (col + 1, ext.y_min, ext.y_max)] {
-        let row = m.row(hi);
-        m.a.push(row, c, 1.0);
-        m.group(GRID, row);
-        let row = m.row(-lo);
-        m.a.push(row, c, -1.0);
-        m.group(GRID, row);
+/// x_min ≤ x ≤ x_max and y_min ≤ y ≤ y_max for the (x, y) at columns `col`, `col + 1`, a
+/// vehicle's position that the model's hard rows keep within `reach` (metres, horizontally) of
+/// `centre`. A bound more than `reach` + [`REDUNDANT_MARGIN`] from `centre` cannot bind: its row
+/// is padding (`INACTIVE`, zero coefficient, so the pattern stays).
+///
+/// Why not keep every row: a bound kilometres away is a slack of kilometres beside slacks of
+/// metres, and the interior-point method starts far from centred. On the default window at
+/// N = 5 the ten models of the SCP took 23–32 interior-point iterations each with every grid
+/// row and 19–27 with the redundant ones padded, for the same optima (BENCHMARKS.md, "Far
+/// bounds", tenth session).
+pub(super) fn grid(m: &mut Assembly, col: usize, ext: &Extent, centre: [f64; 2], reach: f64) {
+    let far = reach + REDUNDANT_MARGIN;
+    for (i, lo, hi) in [(0, ext.x_min, ext.x_max), (1, ext.y_min, ext.y_max)] {
+        let c = centre[i];
+        for (sign, bound, room) in [(1.0, hi, hi - c), (-1.0, -lo, c - lo)] {
+            // a non-finite reference (room NaN) keeps the row
+            let live = room.partial_cmp(&far) != Some(std::cmp::Ordering::Greater);
+            let row = m.row(if live { bound } else { INACTIVE });
+            m.a.push(row, col + i, if live { sign } else { 0.0 });
+            m.group(GRID, row);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn extent() -> Extent {
+        Extent {
+            x_min: -1000.0,
+            x_max: 1000.0,
+            y_min: 0.0,
+            y_max: 500.0,
+        }
+    }
+
+    /// The four rows of `grid` as (coefficient, b), in the order x ≤ x_max, −x ≤ −x_min,
+    /// y ≤ y_max, −y ≤ −y_min.
+    fn rows(centre: [f64; 2], reach: f64) -> Vec<(f64, f64)> {
+        let mut m = Assembly::new(2);
+        grid(&mut m, 0, &extent(), centre, reach);
+        assert_eq!((m.b.len(), m.a.len()), (4, 4), "the pattern never changes");
+        (0..4).map(|i| (m.a.vals[i], m.b[i])).collect()
+    }
+
+    #[test]
+    fn grid_bounds_beyond_reach_are_padding_and_the_rest_hold() {
+        // 900 m from x_max, 1100 m from x_min, 100 m from y_max, 400 m from y_min; reach 300 m
+        let r = rows([100.0, 400.0], 300.0);
+        assert_eq!(r[0], (0.0, INACTIVE));
+        assert_eq!(r[1], (0.0, INACTIVE));
+        assert_eq!(r[2], (1.0, 500.0));
+        assert_eq!(r[3], (0.0, INACTIVE));
+        // within the margin of the reach: kept
+        let r = rows([100.0, 400.0], 400.0 - 0.5 * REDUNDANT_MARGIN);
+        assert_eq!(r[3], (-1.0, 0.0));
+        // a centre outside the grid keeps the bound it breaks
+        let r = rows([1200.0, 250.0], 10.0);
+        assert_eq!(r[0], (1.0, 1000.0));
+        assert_eq!(r[1], (0.0, INACTIVE));
+    }
+
+    #[test]
+    fn grid_bounds_hold_for_an_unbounded_reach_or_a_non_finite_centre() {
+        for r in [
+            rows([0.0, 250.0], f64::INFINITY),
+            rows([f64::NAN, f64::NAN], 1.0),
+        ] {
+            assert_eq!(
+                r,
+                vec![(1.0, 1000.0), (-1.0, 1000.0), (1.0, 500.0), (-1.0, 0.0)]
+            );
+        }
     }
 }

@@ -93,18 +93,21 @@ pub(super) fn curvature(
 /// violation over every sample, so a sample left out this iteration that the step makes
 /// critical is picked up at the next one, and convergence is only declared when all of them
 /// hold. Every row touches P[k−1] and P[k], so the pattern is fixed.
+///
+/// Returns, per segment (`trust::segment`), whether one of its rows has a curvature term.
 pub(super) fn rows(
     p: &TeamProblem,
     r: &Trajectory,
     m: &mut Assembly,
     radius: f64,
-) -> Result<(), PlanError> {
+) -> Result<Vec<bool>, PlanError> {
     let l = p.layout;
     // constraint tightening: the model asks for FLOOR_MARGIN more than ε, so the error of the
     // linearisation cannot leave the true constraint (measured with ε) violated at the end
     let eps = p.scenario.auv.floor_clearance + FLOOR_MARGIN;
     let res = p.scenario.acoustic.resolution;
     let mut g = Vec::new();
+    let mut bent = vec![false; l.n * l.k];
     for n in 0..l.n {
         for k in 1..=l.k {
             // a first guess may run past the grid's edge: linearise at the nearest point
@@ -145,6 +148,7 @@ pub(super) fn rows(
                 // the curvature term ½L‖d‖² of the sample's horizontal step d, bounded by the
                 // ends' (‖d‖² ≤ (1 − s)‖d[k−1]‖² + s‖d[k]‖², convexity) through their τ
                 let bend = 0.5 * bend * p.scenario.acoustic.sonar_range;
+                bent[super::trust::segment(l, n, k)] |= bend > 0.0;
                 let row = m.row(rhs);
                 if k > 1 {
                     for i in 0..3 {
@@ -160,7 +164,7 @@ pub(super) fn rows(
             }
         }
     }
-    Ok(())
+    Ok(bent)
 }
 
 /// A row's g with the margin the reference has of it: g is taken with the full

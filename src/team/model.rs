@@ -23,6 +23,19 @@ pub(crate) struct Assembly {
 }
 
 impl Assembly {
+    /// An empty model over `variables` variables.
+    pub(super) fn new(variables: usize) -> Assembly {
+        Assembly {
+            p: Triplets::default(),
+            q: vec![0.0; variables],
+            a: Triplets::default(),
+            b: Vec::new(),
+            cones: Vec::new(),
+            constant: 0.0,
+            groups: Vec::new(),
+        }
+    }
+
     /// A new row with right-hand side `b`; returns its index.
     pub(super) fn row(&mut self, b: f64) -> usize {
         self.b.push(b);

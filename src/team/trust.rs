@@ -11,6 +11,7 @@
 //! instead of its own cone saved a cone, but at the largest radii a solve then took 52–85
 //! interior-point iterations instead of 31–35.)
 
+use super::layout::Layout;
 use super::model::Assembly;
 use super::TeamProblem;
 use crate::trajectory::Trajectory;
@@ -55,30 +56,51 @@ pub(super) fn auv(
 
 /// The squared step of P_n[k], τ ≥ ‖P_n,xy[k] − P̄_n,xy[k]‖² / d_s, for the rows of segment k
 /// (its end) and of segment k + 1 (its start, k < K); at k = 1 also the fixed start's (0) for
-/// segment 1.
-pub(super) fn squared_steps(p: &TeamProblem, m: &mut Assembly, r: &Trajectory, n: usize, k: usize) {
+/// segment 1. `bent[s]` says whether segment s (`segment(layout, n, k)`) has a floor row with a
+/// curvature term: a segment without one leaves its pair of τ unbound from the step (τ ≥ 0,
+/// its entries in the cone zero, so that the pattern stays), and [`proximal`] prices the step
+/// in P instead.
+pub(super) fn squared_steps(
+    p: &TeamProblem,
+    m: &mut Assembly,
+    r: &Trajectory,
+    bent: &[bool],
+    n: usize,
+    k: usize,
+) {
     let l = p.layout;
-    square(p, m, l.end_square(n, k), Some((r, n, k)));
+    let of = |s: usize| Some((r, n, k, bent[segment(l, n, s)]));
+    square(p, m, l.end_square(n, k), of(k));
     if k < l.k {
-        square(p, m, l.start_square(n, k + 1), Some((r, n, k)));
+        square(p, m, l.start_square(n, k + 1), of(k + 1));
     }
     if k == 1 {
         square(p, m, l.start_square(n, 1), None);
     }
 }
 
-/// τ (column `tau`) ≥ ‖P_n,xy[k] − P̄_n,xy[k]‖² / d_s for `of` = (r, n, k), τ ≥ 0 for None, as
-/// the second-order cone ‖(2·(P_xy − P̄_xy), τ − d_s)‖ ≤ τ + d_s.
-fn square(p: &TeamProblem, m: &mut Assembly, tau: usize, of: Option<(&Trajectory, usize, usize)>) {
+/// The index of segment k − 1 → k of AUV n (k = 1..=K) in the flags `floor::rows` returns.
+pub(super) fn segment(l: Layout, n: usize, k: usize) -> usize {
+    n * l.k + (k - 1)
+}
+
+/// τ (column `tau`) ≥ ‖P_n,xy[k] − P̄_n,xy[k]‖² / d_s for `of` = (r, n, k, true), τ ≥ 0 for
+/// None or (…, false), as the second-order cone ‖(2·(P_xy − P̄_xy), τ − d_s)‖ ≤ τ + d_s.
+fn square(
+    p: &TeamProblem,
+    m: &mut Assembly,
+    tau: usize,
+    of: Option<(&Trajectory, usize, usize, bool)>,
+) {
     let l = p.layout;
     let c = p.scenario.acoustic.sonar_range;
     let row = m.row(c);
     m.a.push(row, tau, -1.0);
     for i in 0..2 {
         match of {
-            Some((r, n, k)) => {
-                let row = m.row(-2.0 * r.auv_p[n][k][i]);
-                m.a.push(row, l.auv_p(n, k) + i, -2.0);
+            Some((r, n, k, bound)) => {
+                let row = m.row(if bound { -2.0 * r.auv_p[n][k][i] } else { 0.0 });
+                m.a.push(row, l.auv_p(n, k) + i, if bound { -2.0 } else { 0.0 });
             }
             None => {
                 m.row(0.0);
@@ -88,6 +110,39 @@ fn square(p: &TeamProblem, m: &mut Assembly, tau: usize, of: Option<(&Trajectory
     let row = m.row(-c);
     m.a.push(row, tau, -1.0);
     m.cones.push(SecondOrderConeT(4));
+}
+
+/// For every τ that [`squared_steps`] leaves unbound (a segment without a bent floor row), its
+/// price in P instead: TAU_PRICE·‖P_n,xy[k] − P̄_n,xy[k]‖²/d_s, what the price of τ at its
+/// bound would be. The entries are in P's pattern for every waypoint (zero where both of a
+/// waypoint's τ are bound).
+///
+/// Why not leave τ bound and priced everywhere: where nothing else needs τ, the solver meets the
+/// cone ‖(2d, τ − d_s)‖ ≤ τ + d_s near d = 0, τ = 0, and resolves d only to about the square
+/// root of its tolerance (on a flat floor, horizontal inputs of 4·10⁻⁷ m/s² where the optimum
+/// has none). Why not drop the price with the binding: the proximal pull kept the SCP's steps
+/// short where the floor is flat, and without it the median gap to the converged optimum at
+/// N = 5 was 1.63 % against 0.81 % (BENCHMARKS.md, "The floor's bend").
+pub(super) fn proximal(p: &TeamProblem, m: &mut Assembly, r: &Trajectory, bent: &[bool]) {
+    let l = p.layout;
+    let per_tau = TAU_PRICE / p.scenario.acoustic.sonar_range;
+    for n in 0..l.n {
+        for k in 1..=l.k {
+            // the waypoint's τ: segment k's end, and segment k + 1's start
+            let mut unbound = usize::from(!bent[segment(l, n, k)]);
+            if k < l.k {
+                unbound += usize::from(!bent[segment(l, n, k + 1)]);
+            }
+            let w = unbound as f64 * per_tau;
+            for i in 0..2 {
+                let (col, at) = (l.auv_p(n, k) + i, r.auv_p[n][k][i]);
+                // w·(x − x̄)² = ½(2w)x² − 2w·x̄·x + w·x̄²
+                m.p.push(col, col, 2.0 * w);
+                m.q[col] -= 2.0 * w * at;
+                m.constant += w * at * at;
+            }
+        }
+    }
 }
 
 /// ‖P_USV[k] − P̄_USV[k]‖ ≤ Δ.
@@ -108,6 +163,66 @@ mod tests {
     use crate::scenario::Scenario;
     use proptest::prelude::*;
 
+    /// `f` of one AUV's problem (K = 3, the default scenario's first window) and its first
+    /// guess, the reference.
+    fn with_problem<R>(f: impl FnOnce(&TeamProblem, Trajectory) -> R) -> R {
+        let mut s = Scenario::default();
+        s.team.auvs = 1;
+        s.horizon.steps = 3;
+        let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
+        let keep_out = floor.keep_out();
+        let p = TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
+        let r = p.initial_guess(None);
+        f(&p, r)
+    }
+
+    /// Where no floor row is bent, τ is bound to nothing (its cone's step entries zero) and the
+    /// step's price is in P: at a waypoint moved by d, ½xᵀPx + qᵀx + constant is
+    /// TAU_PRICE·‖d‖²/d_s per unbound τ (two at an inner waypoint, one at the last).
+    #[test]
+    fn an_unbound_squared_step_is_priced_in_p() {
+        with_problem(|p, r| unbound_priced_in_p(p, &r));
+    }
+
+    fn unbound_priced_in_p(p: &TeamProblem, r: &Trajectory) {
+        let l = p.layout;
+        let mut m = super::super::model::Assembly::new(l.variables());
+        // segment 3 bent, segments 1 and 2 not
+        let bent = vec![false, false, true];
+        squared_steps(p, &mut m, r, &bent, 0, 1);
+        // segment 1's end and segment 2's start: no step entry holds a value
+        for i in 0..m.a.len() {
+            let col = m.a.cols[i];
+            if col == l.auv_p(0, 1) || col == l.auv_p(0, 1) + 1 {
+                assert_eq!(m.a.vals[i], 0.0);
+            }
+        }
+        proximal(p, &mut m, r, &bent);
+        let (dx, dy) = (30.0, -40.0);
+        let value = |k: usize| {
+            let mut x = vec![0.0; l.variables()];
+            for kk in 1..=l.k {
+                x[l.auv_p(0, kk)] = r.auv_p[0][kk][0];
+                x[l.auv_p(0, kk) + 1] = r.auv_p[0][kk][1];
+            }
+            x[l.auv_p(0, k)] += dx;
+            x[l.auv_p(0, k) + 1] += dy;
+            let mut v = m.constant;
+            for i in 0..m.p.len() {
+                v += 0.5 * m.p.vals[i] * x[m.p.rows[i]] * x[m.p.cols[i]];
+            }
+            v + m.q.iter().zip(&x).map(|(q, x)| q * x).sum::<f64>()
+        };
+        let per_tau = TAU_PRICE * (dx * dx + dy * dy) / p.scenario.acoustic.sonar_range;
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + b.abs());
+        // waypoint 1: segment 1's end and segment 2's start, both unbound
+        assert!(close(value(1), 2.0 * per_tau), "{}", value(1));
+        // waypoint 2: segment 2's end unbound, segment 3's start bound
+        assert!(close(value(2), per_tau), "{}", value(2));
+        // waypoint 3 (the last): segment 3's end, bound
+        assert!(close(value(3), 0.0), "{}", value(3));
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
         /// The rows of `squared_steps`, evaluated (s = b − A·x) at a waypoint moved by d from the
@@ -116,47 +231,46 @@ mod tests {
         fn the_squared_step_cone_holds_tau_at_the_square(
             dx in -500.0..500.0f64, dy in -500.0..500.0f64, below in 0.0..0.999f64,
         ) {
-            let mut s = Scenario::default();
-            s.team.auvs = 1;
-            s.horizon.steps = 3;
-            let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
-            let keep_out = floor.keep_out();
-            let p = TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
-            let r = p.initial_guess(None);
-            let l = p.layout;
-            let mut m = super::super::model::Assembly {
-                p: Default::default(),
-                q: vec![0.0; l.variables()],
-                a: Default::default(),
-                b: Vec::new(),
-                cones: Vec::new(),
-                constant: 0.0,
-                groups: Vec::new(),
-            };
-            squared_steps(&p, &mut m, &r, 0, 2);
-            // two cones: segment 2's end (τ) and segment 3's start (τ'), the same square
-            assert_eq!(m.b.len(), 8);
-            let mut x = vec![0.0; l.variables()];
-            let c = s.acoustic.sonar_range;
-            let at = |x: &mut Vec<f64>, tau: f64, cone: usize| {
-                x[l.auv_p(0, 2)] = r.auv_p[0][2][0] + dx;
-                x[l.auv_p(0, 2) + 1] = r.auv_p[0][2][1] + dy;
-                x[l.end_square(0, 2)] = tau;
-                x[l.start_square(0, 3)] = tau;
-                let mut slack = m.b.clone();
-                for i in 0..m.a.len() {
-                    slack[m.a.rows[i]] -= m.a.vals[i] * x[m.a.cols[i]];
-                }
-                let s = &slack[4 * cone..4 * cone + 4];
-                s[0] - (s[1].powi(2) + s[2].powi(2) + s[3].powi(2)).sqrt()
-            };
-            let tau = (dx * dx + dy * dy) / c;
-            for cone in 0..2 {
-                prop_assert!(at(&mut x, tau, cone).abs() <= 1e-9 * (tau + c));
-                if tau > 1e-3 {
-                    prop_assert!(at(&mut x, below * tau, cone) < 0.0);
-                }
+            with_problem(|p, r| square_at(p, &r, dx, dy, below))?;
+        }
+    }
+
+    /// The body of `the_squared_step_cone_holds_tau_at_the_square`.
+    fn square_at(
+        p: &TeamProblem,
+        r: &Trajectory,
+        dx: f64,
+        dy: f64,
+        below: f64,
+    ) -> Result<(), TestCaseError> {
+        let s = p.scenario;
+        let l = p.layout;
+        let mut m = super::super::model::Assembly::new(l.variables());
+        let bent = vec![true; l.n * l.k];
+        squared_steps(p, &mut m, r, &bent, 0, 2);
+        // two cones: segment 2's end (τ) and segment 3's start (τ'), the same square
+        assert_eq!(m.b.len(), 8);
+        let mut x = vec![0.0; l.variables()];
+        let c = s.acoustic.sonar_range;
+        let at = |x: &mut Vec<f64>, tau: f64, cone: usize| {
+            x[l.auv_p(0, 2)] = r.auv_p[0][2][0] + dx;
+            x[l.auv_p(0, 2) + 1] = r.auv_p[0][2][1] + dy;
+            x[l.end_square(0, 2)] = tau;
+            x[l.start_square(0, 3)] = tau;
+            let mut slack = m.b.clone();
+            for i in 0..m.a.len() {
+                slack[m.a.rows[i]] -= m.a.vals[i] * x[m.a.cols[i]];
+            }
+            let s = &slack[4 * cone..4 * cone + 4];
+            s[0] - (s[1].powi(2) + s[2].powi(2) + s[3].powi(2)).sqrt()
+        };
+        let tau = (dx * dx + dy * dy) / c;
+        for cone in 0..2 {
+            prop_assert!(at(&mut x, tau, cone).abs() <= 1e-9 * (tau + c));
+            if tau > 1e-3 {
+                prop_assert!(at(&mut x, below * tau, cone) < 0.0);
             }
         }
+        Ok(())
     }
 }
