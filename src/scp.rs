@@ -73,6 +73,11 @@ pub trait ScpProblem {
     fn numerical_trouble(&self, _e: &Self::Error) -> bool {
         false
     }
+    /// Told of every candidate the loop judged, and whether it became the reference: a problem
+    /// whose model keeps only some of its constraints' rows (screened by the reference) can add
+    /// the ones a rejected candidate broke, so that the next model about the same reference
+    /// is not the same model again. Nothing by default.
+    fn judged(&mut self, _candidate: &Self::Iterate, _accepted: bool) {}
 }
 
 /// One SCP iteration, as the loop reports it to its observer.
@@ -292,6 +297,7 @@ where
             let gain = phi_ref - phi_cand;
             if !negligible && ratio >= RHO1 && gain > settings.tolerance * scale {
                 record.accepted = true;
+                problem.judged(&candidate, true);
                 momentum = next_momentum;
                 // a kept momentum step is a good step: the radius may grow
                 cooldown = cooldown.saturating_sub(1);
@@ -307,6 +313,7 @@ where
                     settings.feasibility_tol,
                 );
             } else {
+                problem.judged(&candidate, false);
                 momentum = 1.0;
                 good_run = false;
             }
@@ -334,6 +341,7 @@ where
             break; // stuck infeasible: the best feasible iterate, if any, or the error below
         }
 
+        problem.judged(&candidate, first || ratio >= RHO0);
         if first || ratio >= RHO0 {
             record.accepted = true;
             // the momentum builds over good steps (ρ ≥ RHO2: the model is trusted)

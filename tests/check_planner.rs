@@ -347,6 +347,34 @@ fn regression_slow_auvs_behind_a_fast_usv_plan() {
     }
 }
 
+/// Regression (issue 22, tenth session): with 6 floor rows per segment, Step 3 of this mission
+/// (N = 3, K = 6, δ = 197 s, d_s = 60 m; the random test's case 490443) was rejected 15 times
+/// about one reference and stalled with the chain broken ("the acoustic chain breaks at
+/// window 0, step 1"): the model moved the AUVs up and down freely (the trust region is
+/// horizontal) and broke the floor at samples that had no row, and each model about the same
+/// reference was the same model again. The samples a rejected candidate breaks now get rows
+/// (`team::floor::force`), and the mission plans.
+#[test]
+fn regression_a_rejected_candidates_floor_samples_get_rows() {
+    let d = Scenario::default();
+    let p = plans_and_passes(
+        &Draw {
+            seed: 490443,
+            windows: 1,
+            auvs: 3,
+            steps: 6,
+            dt: 196.86652816814896,
+            sonar_range: 60.0,
+            auv_speed: 1.978983388824203,
+            usv_speed: 1.7616828760791416,
+            seamounts: d.seafloor.synthetic.seamounts,
+            valleys: d.seafloor.synthetic.valleys,
+        }
+        .scenario(),
+    );
+    assert_eq!(p.metrics.connected_fraction, 1.0);
+}
+
 /// Regression (issue 13's sweep, draw 2: N = 6, K = 28, δ = 187 s, d_s = 66 m): window 0 ran
 /// the team into the grid's east edge, and window 1 was refused with "the acoustic chain breaks
 /// at window 1, step 1" (or, once its guess turned back, "a constraint cannot hold: C2_2").

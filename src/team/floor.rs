@@ -21,8 +21,12 @@ use crate::trajectory::Trajectory;
 /// and every step it broke was rejected (BENCHMARKS.md).
 pub(super) const FLOOR_MARGIN: f64 = 0.5;
 
-/// Floor rows per segment (see [`rows`]).
-pub(super) const FLOOR_ROWS: usize = 12;
+/// Floor rows per segment (see [`rows`]), besides the waypoint's. 6, not the 12 of the
+/// sessions before the floor's bend was priced: with the bend term the model holds over a
+/// whole step, the nearly parallel rows of neighbouring samples only cost the interior-point
+/// method iterations, and the samples a rejected candidate breaks get rows ([`force`]), so
+/// that a model which left them out is not built again (BENCHMARKS.md, "Fewer floor rows").
+pub(super) const FLOOR_ROWS: usize = 6;
 
 /// Least distance (m) between two samples that get rows of one segment, whatever the
 /// resolution r of 𝓛_r (5 m, the default r): a finer r makes the measure the SCP and the
@@ -120,6 +124,7 @@ pub(super) fn rows(
                 g.push((floor_sample(p.keep_out, eps, pa, pb, sj)?.0, j));
             }
             let mut picks = pick_samples(&mut g, FLOOR_ROWS, apart(pa, pb, used));
+            force(&mut picks, &p.forced[super::trust::segment(l, n, k)], used);
             // the waypoint P[k] always has a row: the trust region is horizontal, so in the
             // model a waypoint without one could dive below the floor at any radius
             if !picks.contains(&used) {
@@ -165,6 +170,27 @@ pub(super) fn rows(
         }
     }
     Ok(bent)
+}
+
+/// Give rows to the samples nearest the fractions `forced` (where rejected candidates broke
+/// the floor, `TeamProblem::judged`), in place of the last picks (never of the worst sample
+/// and its neighbours, the first three). Without them a model that leaves out the samples its
+/// own candidate breaks is built again, the same, about the same reference, and the SCP
+/// stalls (6 rows per segment: `tests/check_planner.rs`'s regression seed 490443).
+fn force(picks: &mut Vec<usize>, forced: &[f64], used: usize) {
+    let mut slot = picks.len();
+    for &f in forced.iter().rev() {
+        let j = ((f * used as f64).round() as usize).clamp(1, used);
+        if picks.contains(&j) {
+            continue;
+        }
+        if picks.len() < FLOOR_ROWS {
+            picks.push(j);
+        } else if slot > 3 {
+            slot -= 1;
+            picks[slot] = j;
+        }
+    }
 }
 
 /// A row's g with the margin the reference has of it: g is taken with the full
@@ -255,6 +281,23 @@ pub(super) fn detail(p: &TeamProblem, n: usize, k: usize, at: [f64; 3]) -> Strin
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The samples rejected candidates broke replace the last picks (never the worst sample
+    /// and its neighbours), fill free slots first, and are not taken twice.
+    #[test]
+    fn forced_samples_take_the_last_slots() {
+        let mut picks = vec![10, 9, 11, 2, 30, 40];
+        force(&mut picks, &[0.5, 0.2], 100);
+        // 0.2 → 20 replaces the last pick, 0.5 → 50 the one before
+        assert_eq!(picks, vec![10, 9, 11, 2, 50, 20]);
+        let mut picks = vec![10, 9, 11];
+        force(&mut picks, &[0.1, 0.0, 1.0, 0.1], 100);
+        // a fraction of 0 is the first sample; 10 is taken once
+        assert_eq!(picks, vec![10, 9, 11, 100, 1]);
+        let mut picks = vec![10, 9, 11, 2, 30, 40];
+        force(&mut picks, &[0.01, 0.02, 0.03, 0.04], 100);
+        assert_eq!(&picks[..3], &[10, 9, 11]);
+    }
     use crate::mission::scenario_floor;
     use crate::scenario::Scenario;
     use proptest::prelude::*;

@@ -13,12 +13,12 @@
 //!   without obstacles these rows were once left out, and the sweep of issue 13 found
 //!   feasible missions refused after five rounds of lowering bands.)
 //!
-//! Both are linearised about the reference at the samples of 𝓛_r, the `FLOOR_ROWS` (USV) or
+//! Both are linearised about the reference at the samples of 𝓛_r, the `USV_ROWS` (USV) or
 //! `LOS_ROWS` (link) samples with the largest g getting a row sharing one slack per segment,
 //! like the AUVs' floor rows; the SCP measures the true violation at every sample
 //! (`violations`). Step 1 (P2, no links) over a grid without obstacles has none of this.
 
-use super::floor::{apart, pick_samples, FLOOR_ROWS};
+use super::floor::{apart, pick_samples};
 use super::links::{describe, end_columns, ends};
 use super::model::{Assembly, INACTIVE};
 use super::{TeamProblem, OBSTACLE};
@@ -35,7 +35,12 @@ use crate::trajectory::Trajectory;
 /// model can predict no decrease at all: the USV was seen stuck in a hole so.
 const KEEP_OUT_MARGIN: f64 = 0.25;
 
-/// Line-of-sight rows per planned link and step (fewer than `FLOOR_ROWS`: links are at most d_s
+/// Keep-out rows per USV segment (over a grid with obstacles): 12, as the AUVs' floor rows
+/// had before `floor::FLOOR_ROWS` became 6 (the USV's rows have no curvature term and no
+/// rows for the samples a rejected candidate broke).
+const USV_ROWS: usize = 12;
+
+/// Line-of-sight rows per planned link and step (fewer than `USV_ROWS`: links are at most d_s
 /// long, and there are N of them per step).
 const LOS_ROWS: usize = 6;
 
@@ -70,7 +75,7 @@ pub(super) fn usv_rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) -> Res
     let at = |k: usize| p.inside([r.usv_p[k][0], r.usv_p[k][1], 0.0]);
     for k in 1..=l.k {
         let p0 = (k == 1).then_some([p.start.usv[0], p.start.usv[1], 0.0]);
-        let rows = sample_rows(p, at(k - 1), at(k), KEEP_OUT_MARGIN, FLOOR_ROWS, true, p0)?;
+        let rows = sample_rows(p, at(k - 1), at(k), KEEP_OUT_MARGIN, USV_ROWS, true, p0)?;
         for (t, c, rhs) in rows {
             let row = m.row(rhs);
             if k > 1 {

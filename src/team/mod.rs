@@ -91,6 +91,10 @@ pub struct TeamProblem<'a> {
     /// The points OF1_8 ("away") measures from: the USV's earlier path, then this window's
     /// start (only the start unless `with_track`).
     track: Vec<[f64; 2]>,
+    /// Per AUV segment (`trust::segment`), where along it (fractions) a candidate rejected
+    /// about the current reference broke the floor: `floor::rows` gives those samples rows
+    /// too. Cleared when a candidate is accepted.
+    forced: Vec<Vec<f64>>,
     solver: Option<ConicSolver>,
 }
 
@@ -126,6 +130,7 @@ impl<'a> TeamProblem<'a> {
             bridges: Vec::new(),
             least: Vec::new(),
             terminal: false,
+            forced: vec![Vec::new(); layout.n * layout.k],
             solver: None,
         }
     }
@@ -462,6 +467,28 @@ impl ScpProblem for TeamProblem<'_> {
         // height term linearised, the slacks penalised
         let model = sol.objective + m.constant;
         Ok((t, model, sol.report()))
+    }
+
+    fn judged(&mut self, candidate: &Trajectory, accepted: bool) {
+        if accepted {
+            self.forced.iter_mut().for_each(Vec::clear);
+            return;
+        }
+        let l = self.layout;
+        for n in 0..l.n {
+            for k in 1..=l.k {
+                let (shortfall, at) = floor::violation(self, candidate, n, k);
+                if shortfall > 0.0 {
+                    let (a, b) = (candidate.auv_p[n][k - 1], candidate.auv_p[n][k]);
+                    let length = (b[0] - a[0]).hypot(b[1] - a[1]);
+                    let along = (at[0] - a[0]).hypot(at[1] - a[1]);
+                    let f = if length > 0.0 { along / length } else { 1.0 };
+                    if f.is_finite() {
+                        self.forced[trust::segment(l, n, k)].push(f.clamp(0.0, 1.0));
+                    }
+                }
+            }
+        }
     }
 
     fn evaluate(&self, t: &Trajectory) -> Evaluation {
