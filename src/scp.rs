@@ -341,9 +341,9 @@ where
             break; // stuck infeasible: the best feasible iterate, if any, or the error below
         }
 
-        problem.judged(&candidate, first || ratio >= RHO0);
         if first || ratio >= RHO0 {
             record.accepted = true;
+            problem.judged(&candidate, true);
             // the momentum builds over good steps (ρ ≥ RHO2: the model is trusted)
             good_run = !first && ratio >= RHO2;
             momentum = if good_run { next_momentum } else { 1.0 };
@@ -356,8 +356,8 @@ where
                 reference_eval,
                 settings.feasibility_tol,
             );
-        }
-        if !record.accepted {
+        } else {
+            problem.judged(&candidate, false);
             good_run = false;
             momentum = 1.0;
         }

@@ -281,6 +281,9 @@ pub(super) fn detail(p: &TeamProblem, n: usize, k: usize, at: [f64; 3]) -> Strin
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mission::scenario_floor;
+    use crate::scenario::Scenario;
+    use proptest::prelude::*;
 
     /// The samples rejected candidates broke replace the last picks (never the worst sample
     /// and its neighbours), fill free slots first, and are not taken twice.
@@ -298,9 +301,6 @@ mod tests {
         force(&mut picks, &[0.01, 0.02, 0.03, 0.04], 100);
         assert_eq!(&picks[..3], &[10, 9, 11]);
     }
-    use crate::mission::scenario_floor;
-    use crate::scenario::Scenario;
-    use proptest::prelude::*;
 
     /// The worst sample and both its neighbours get rows before the rest spread out; at the
     /// ends of the segment only the neighbour that exists; fewer samples than rows: all.

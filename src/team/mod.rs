@@ -483,8 +483,11 @@ impl ScpProblem for TeamProblem<'_> {
                     let length = (b[0] - a[0]).hypot(b[1] - a[1]);
                     let along = (at[0] - a[0]).hypot(at[1] - a[1]);
                     let f = if length > 0.0 { along / length } else { 1.0 };
-                    if f.is_finite() {
-                        self.forced[trust::segment(l, n, k)].push(f.clamp(0.0, 1.0));
+                    let forced = &mut self.forced[trust::segment(l, n, k)];
+                    let f = f.clamp(0.0, 1.0);
+                    // a sample already forced about this reference is not listed twice
+                    if f.is_finite() && !forced.contains(&f) {
+                        forced.push(f);
                     }
                 }
             }
