@@ -125,7 +125,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "usv.initial_heading" => {
             "Direction, rad from +x towards +y, of the first-guess USV path about which the \
              concave OF1_8 is first linearised (its gradient is zero where the USV has not \
-             moved)."
+             moved). With objective = \"away\" the first window keeps close to it: the SCP \
+             does not choose the heading, so set it to the direction to explore."
         }
         "usv.away_from" => {
             "What OF1_8 measures \"away\" from. \"track\" (ours, default): the nearest point              of the path the USV has travelled since the mission's start, so each window              heads for new ground; \"window\": the window's own start (the paper), so a long              mission may wander back. The same in the first window."
