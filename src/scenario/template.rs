@@ -129,7 +129,10 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              does not choose the heading, so set it to the direction to explore."
         }
         "usv.away_from" => {
-            "What OF1_8 measures \"away\" from. \"track\" (ours, default): the nearest point              of the path the USV has travelled since the mission's start, so each window              heads for new ground; \"window\": the window's own start (the paper), so a long              mission may wander back. The same in the first window."
+            "What OF1_8 measures \"away\" from. \"track\" (ours, default): the nearest point \
+             of the path the USV has travelled since the mission's start, so each window \
+             heads for new ground; \"window\": the window's own start (the paper), so a long \
+             mission may wander back. The same in the first window."
         }
         "weights" => {
             "Weights w1..w8 of OF1 (problem P1) and w8_2 of OF1_8_2. All ≥ 0. The paper gives \
@@ -139,7 +142,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "w1 · OF1_1: input energy Σ‖𝒰[k]‖², per (m/s²)² (per AUV: see scaling)."
         }
         "weights.w2" => {
-            "w2 · OF1_2: keeps the AUVs deep, near the floor, per metre (per AUV: see scaling              and of1_2)."
+            "w2 · OF1_2: keeps the AUVs deep, near the floor, per metre (per AUV: see scaling \
+             and of1_2)."
         }
         "weights.of1_2" => {
             "What OF1_2 sums over AUVs and steps: \"height\" = z − Z(x, y), the height above the \
