@@ -93,7 +93,7 @@ pub struct TeamProblem<'a> {
     track: Vec<[f64; 2]>,
     /// Per AUV segment (`trust::segment`), where along it (fractions) a candidate rejected
     /// about the current reference broke the floor: `floor::rows` gives those samples rows
-    /// too. Cleared when a candidate is accepted.
+    /// too. Cleared when a candidate is accepted and when a solve starts.
     forced: Vec<Vec<f64>>,
     solver: Option<ConicSolver>,
 }
@@ -392,6 +392,9 @@ impl<'a> TeamProblem<'a> {
                 .trust_region
                 .min(self.scenario.acoustic.band_tolerance);
         }
+        // the samples forced about an earlier solve's references (a line-of-sight round's
+        // last candidate may have been rejected) are not this solve's
+        self.forced.iter_mut().for_each(Vec::clear);
         scp::solve(self, guess, &settings, observer)
     }
 }
@@ -482,9 +485,8 @@ impl ScpProblem for TeamProblem<'_> {
                     let (a, b) = (candidate.auv_p[n][k - 1], candidate.auv_p[n][k]);
                     let length = (b[0] - a[0]).hypot(b[1] - a[1]);
                     let along = (at[0] - a[0]).hypot(at[1] - a[1]);
-                    let f = if length > 0.0 { along / length } else { 1.0 };
+                    let f = if length > 0.0 { along / length } else { 1.0 }.clamp(0.0, 1.0);
                     let forced = &mut self.forced[trust::segment(l, n, k)];
-                    let f = f.clamp(0.0, 1.0);
                     // a sample already forced about this reference is not listed twice
                     if f.is_finite() && !forced.contains(&f) {
                         forced.push(f);
