@@ -75,6 +75,7 @@ fn model(c: &mut Criterion) {
 
         let step1 = shoal::step1::solve(&mut p2, None, &mut |_| {})
             .expect("P2")
+            .0
             .iterate;
         let graph = shoal::step2::solve(
             &step1,

@@ -116,6 +116,10 @@ pub struct Window {
     pub index: usize,
     /// Time of step k = 0 of this window, seconds since the start of the mission.
     pub start_time: f64,
+    /// The first courses tried before Step 1 (`usv.courses` > 1, first window only; absent
+    /// otherwise): Step 1 starts from the one of least merit.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub courses: Vec<Course>,
     /// Step 1 (problem P2).
     pub step1: Stage,
     /// Step 2: the A2U link (P3) and A2A path (P4) per step, from Step 1's positions.
@@ -134,6 +138,30 @@ impl Window {
     /// Whether both of the window's SCP stages converged.
     pub fn converged(&self) -> bool {
         self.step1.converged() && self.final_.converged()
+    }
+}
+
+/// A first course tried by the first window: the formation guess along `heading` and the
+/// merit (objective + λ·violation) of the iterate one SCP iteration of P2 made from it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Course {
+    /// Radians from east towards north.
+    pub heading: f64,
+    /// Absent when the convex solve failed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub merit: Option<f64>,
+}
+
+impl Course {
+    /// The course of least merit (the first on a tie); `None` when every solve failed.
+    pub fn best(courses: &[Course]) -> Option<&Course> {
+        courses
+            .iter()
+            .filter(|c| c.merit.is_some())
+            .fold(None, |best: Option<&Course>, c| match best {
+                Some(b) if b.merit <= c.merit => Some(b),
+                _ => Some(c),
+            })
     }
 }
 

@@ -249,7 +249,7 @@ fn run(
         let more = s.horizon.terminal_margin && w + 1 < s.windows;
         let mut p2 = p2.with_track(&track).with_terminal(more);
         let mut trace = Vec::new();
-        let out1 = step1::solve(&mut p2, heading, &mut |it| {
+        let (out1, courses) = step1::solve(&mut p2, heading, &mut |it| {
             trace.push(iteration_record(it));
             progress(Progress::Iteration {
                 window: w,
@@ -324,6 +324,7 @@ fn run(
         windows.push(Window {
             index: w,
             start_time: w as f64 * s.horizon.steps as f64 * s.horizon.dt,
+            courses,
             step1,
             graph,
             final_,

@@ -1,6 +1,6 @@
 //! Text reports of a plan for the terminal.
 
-use crate::plan::{Metrics, Plan};
+use crate::plan::{Course, Metrics, Plan};
 use std::fmt::Write as _;
 
 /// One row per window with the status and SCP iterations of Step 1 and Step 3, the final plan's
@@ -92,6 +92,9 @@ pub fn summary_table(plan: &Plan) -> String {
             &plan.metrics
         ))
     );
+    if let Some(c) = plan.windows.first().and_then(|w| first_course(&w.courses)) {
+        let _ = writeln!(t, "{c}");
+    }
     if plan.windows.len() > 1 {
         // the mission's explored area is a union: say what the windows swept twice
         let m = &plan.metrics;
@@ -103,6 +106,25 @@ pub fn summary_table(plan: &Plan) -> String {
         );
     }
     t
+}
+
+/// The first window's course choice (`usv.courses` > 1): which course Step 1 started from,
+/// of how many tried, and the merit each reached.
+fn first_course(courses: &[Course]) -> Option<String> {
+    let best = Course::best(courses)?;
+    let tried: Vec<String> = courses
+        .iter()
+        .map(|c| match c.merit {
+            Some(m) => format!("{:.0}° {m:.1}", c.heading.to_degrees()),
+            None => format!("{:.0}° failed", c.heading.to_degrees()),
+        })
+        .collect();
+    Some(format!(
+        "first course: {:.0}° of {} tried (merit after one SCP iteration: {})",
+        best.heading.to_degrees(),
+        courses.len(),
+        tried.join(", ")
+    ))
 }
 
 /// Length of a polyline of USV positions, metres.

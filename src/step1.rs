@@ -6,22 +6,80 @@
 //!
 //! P2 is the window problem of `team` without acoustic links (every constraint family is
 //! there, one file each), solved by the SCvx loop of `scp` from the formation guess of
-//! `team::guess`.
+//! `team::guess`. With `usv.courses` > 1 the first window first tries that many first guesses,
+//! one SCP iteration each, and starts from the best (`first_course`).
 
 use crate::conic::SolveReport;
 use crate::error::PlanError;
+use crate::plan::Course;
+use crate::scenario::UsvObjective;
 use crate::scp::{Iteration, ScpOutcome};
 use crate::team::TeamProblem;
 use crate::trajectory::Trajectory;
 
 /// Solve P2 for the window of `problem` (built without links). `heading` is the USV's course at
 /// the end of the previous window, if any: the first guess continues it. `observer` hears of
-/// every SCP iteration.
+/// every SCP iteration. Returns the outcome and the first courses tried (empty unless this is
+/// the first window, with objective "away" and `usv.courses` > 1).
 pub fn solve(
     problem: &mut TeamProblem,
     heading: Option<f64>,
     observer: &mut dyn FnMut(&Iteration<SolveReport>),
-) -> Result<ScpOutcome<Trajectory>, PlanError> {
+) -> Result<(ScpOutcome<Trajectory>, Vec<Course>), PlanError> {
+    let usv = &problem.scenario().usv;
+    let (heading, trials) =
+        if heading.is_none() && usv.objective == UsvObjective::Away && usv.courses > 1 {
+            let trials = first_course(problem);
+            // every solve failed: the initial heading, as with one course
+            let best = Course::best(&trials).map_or(usv.initial_heading, |c| c.heading);
+            (Some(best), trials)
+        } else {
+            (heading, Vec::new())
+        };
     let guess = problem.initial_guess(heading);
-    problem.solve(guess, observer)
+    Ok((problem.solve(guess, observer)?, trials))
+}
+
+/// The first window's courses: `usv.initial_heading` and `usv.courses − 1` more, evenly spaced
+/// round the compass, each scored by the merit one SCP iteration reaches from its formation
+/// guess. The SCP is a local method: from one course it keeps close to it (each linearised
+/// model of the concave OF1_8 charges a turn), and over a window's courses the objective
+/// spreads by 6–20 % at N = 3 and 5 (docs/method.md, "OF1_8"; BENCHMARKS.md, "First courses").
+fn first_course(problem: &mut TeamProblem) -> Vec<Course> {
+    let usv = &problem.scenario().usv;
+    let (first, m) = (usv.initial_heading, usv.courses);
+    (0..m)
+        .map(|j| {
+            let heading = first + j as f64 * std::f64::consts::TAU / m as f64;
+            let guess = problem.initial_guess(Some(heading));
+            let merit = problem.first_merit(guess).ok().filter(|m| m.is_finite());
+            Course { heading, merit }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn course(heading: f64, merit: Option<f64>) -> Course {
+        Course { heading, merit }
+    }
+
+    #[test]
+    fn the_least_merit_wins_and_the_first_on_a_tie() {
+        let t = [
+            course(0.0, Some(-5.0)),
+            course(1.0, Some(-7.0)),
+            course(2.0, None),
+            course(3.0, Some(-7.0)),
+        ];
+        assert_eq!(Course::best(&t).map(|c| c.heading), Some(1.0));
+    }
+
+    #[test]
+    fn every_solve_failed_leaves_no_best() {
+        assert_eq!(Course::best(&[course(1.0, None)]), None);
+        assert_eq!(Course::best(&[]), None);
+    }
 }

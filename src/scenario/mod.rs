@@ -182,6 +182,11 @@ pub struct Usv {
     /// Direction (rad, from +x towards +y) of the first guess of the USV path, about which the
     /// concave OF1_8 is first linearised (its gradient at "not moved" is zero).
     pub initial_heading: f64,
+    /// Courses the first window tries with objective = "away": `initial_heading` and
+    /// `courses − 1` more, evenly spaced round the compass. Each first guess gets one SCP
+    /// iteration of P2 and Step 1 starts from the course whose iterate has the least merit.
+    /// 1 (the default): `initial_heading` alone.
+    pub courses: usize,
     /// What OF1_8 ("away") measures the USV's distance from: the track it has travelled since
     /// the mission's start (ours, default) or the window's start point (the paper's literal form).
     pub away_from: AwayFrom,
@@ -459,6 +464,7 @@ impl Default for Usv {
             objective: UsvObjective::Away,
             destination: [3000.0, 0.0],
             initial_heading: 0.0,
+            courses: 1,
             away_from: AwayFrom::Track,
         }
     }

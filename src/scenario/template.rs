@@ -126,7 +126,13 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Direction, rad from +x towards +y, of the first-guess USV path about which the \
              concave OF1_8 is first linearised (its gradient is zero where the USV has not \
              moved). With objective = \"away\" the first window keeps close to it: the SCP \
-             does not choose the heading, so set it to the direction to explore."
+             does not choose the heading, so set it to the direction to explore (or let \
+             `courses` try more)."
+        }
+        "usv.courses" => {
+            "Courses the first window tries with objective = \"away\": initial_heading and \
+             courses − 1 more, evenly spaced round the compass; each first guess gets one SCP \
+             iteration and Step 1 starts from the best. 1: initial_heading alone. Integer 1–72."
         }
         "usv.away_from" => {
             "What OF1_8 measures \"away\" from. \"track\" (ours, default): the nearest point \

@@ -38,6 +38,8 @@ pub const MAX_STEPS: usize = 1000;
 pub const MAX_CELLS_PER_SIDE: f64 = 10_000.0;
 /// Largest number of synthetic seamounts, and of valleys.
 pub const MAX_FEATURES: usize = 10_000;
+/// Most first courses `usv.courses` may ask for (one every 5°).
+pub const MAX_COURSES: usize = 72;
 
 #[derive(Default)]
 struct Checker {
@@ -285,6 +287,12 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         "must be two finite numbers [x, y] in metres (P_USV[∞] of OF1_8_2)",
     );
     c.finite("usv.initial_heading", u.initial_heading, "of radians");
+    c.int(
+        "usv.courses",
+        u.courses,
+        (1..=MAX_COURSES).contains(&u.courses),
+        format!("must be an integer from 1 to {MAX_COURSES}"),
+    );
 
     // Weights.
     let w = &s.weights;

@@ -222,7 +222,7 @@ impl<'a> TeamProblem<'a> {
     }
 
     /// The scenario.
-    pub fn scenario(&self) -> &Scenario {
+    pub fn scenario(&self) -> &'a Scenario {
         self.scenario
     }
 
@@ -384,7 +384,31 @@ impl<'a> TeamProblem<'a> {
         guess: Trajectory,
         observer: &mut dyn FnMut(&Iteration<SolveReport>),
     ) -> Result<ScpOutcome<Trajectory>, PlanError> {
-        let mut settings = self.scenario.scp.clone();
+        let settings = self.scenario.scp.clone();
+        self.solve_with(guess, settings, observer)
+    }
+
+    /// The merit (objective + λ·violation) of the iterate one SCP iteration makes from `guess`
+    /// (the guess itself if that step is rejected): how promising a first reference is. The
+    /// convex solver is dropped after it, so that the next solve is the one a fresh problem
+    /// would make.
+    pub fn first_merit(&mut self, guess: Trajectory) -> Result<f64, PlanError> {
+        let settings = crate::scenario::Scp {
+            max_iterations: 1,
+            ..self.scenario.scp.clone()
+        };
+        let out = self.solve_with(guess, settings.clone(), &mut |_| {});
+        // the next solve starts as on a fresh problem: the same plan as from that guess alone
+        self.solver = None;
+        Ok(out?.evaluation.merit(settings.penalty))
+    }
+
+    fn solve_with(
+        &mut self,
+        guess: Trajectory,
+        mut settings: crate::scenario::Scp,
+        observer: &mut dyn FnMut(&Iteration<SolveReport>),
+    ) -> Result<ScpOutcome<Trajectory>, PlanError> {
         if self.links.is_some() {
             // P5 starts from Step 1's converged plan: moves of a band's width, not of the
             // Step 1 radius (the default 200 m was rejected three times in a row)

@@ -240,6 +240,7 @@ fn build_with(
         windows.push(Window {
             index: w,
             start_time: (w * k) as f64 * dt,
+            courses: Vec::new(),
             graph: Default::default(),
             links: Default::default(),
             metrics: Default::default(),

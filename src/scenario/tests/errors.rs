@@ -210,6 +210,8 @@ fn out_of_range_rules() {
         ("[usv]\nmax_speed = 0", "usv.max_speed", 2),
         ("[usv]\ndestination = [nan, 0]", "usv.destination", 2),
         ("[usv]\ninitial_heading = inf", "usv.initial_heading", 2),
+        ("[usv]\ncourses = 0", "usv.courses", 2),
+        ("[usv]\ncourses = 73", "usv.courses", 2),
         ("[weights]\nw1 = -1", "weights.w1", 2),
         ("[weights]\nw5 = -1e-9", "weights.w5", 2),
         ("[weights]\nw8_2 = -1", "weights.w8_2", 2),
