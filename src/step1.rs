@@ -45,17 +45,48 @@ pub fn solve(
 /// guess. The SCP is a local method: from one course it keeps close to it (each linearised
 /// model of the concave OF1_8 charges a turn), and over a window's courses the objective
 /// spreads by 6–20 % at N = 3 and 5 (docs/method.md, "OF1_8"; BENCHMARKS.md, "First courses").
+/// From three courses on, one more is tried: at the vertex of the parabola through the best
+/// course's merit and its two neighbours' (`vertex`), between the courses the even spacing left
+/// out.
 fn first_course(problem: &mut TeamProblem) -> Vec<Course> {
     let usv = &problem.scenario().usv;
     let (first, m) = (usv.initial_heading, usv.courses);
-    (0..m)
-        .map(|j| {
-            let heading = first + j as f64 * std::f64::consts::TAU / m as f64;
-            let guess = problem.initial_guess(Some(heading));
-            let merit = problem.first_merit(guess).ok().filter(|m| m.is_finite());
-            Course { heading, merit }
-        })
-        .collect()
+    let mut probe = |heading: f64| {
+        let guess = problem.initial_guess(Some(heading));
+        let merit = problem.first_merit(guess).ok().filter(|m| m.is_finite());
+        Course { heading, merit }
+    };
+    let mut courses: Vec<Course> = (0..m)
+        .map(|j| probe(first + j as f64 * std::f64::consts::TAU / m as f64))
+        .collect();
+    if let Some(heading) = vertex(&courses) {
+        courses.push(probe(heading));
+    }
+    courses
+}
+
+/// The vertex of the parabola through the merits of the best of `courses` (evenly spaced round
+/// the compass) and of its two neighbours, within half a spacing of the best; `None` with
+/// fewer than three courses, a neighbour whose solve failed, or no curvature.
+fn vertex(courses: &[Course]) -> Option<f64> {
+    let m = courses.len();
+    if m < 3 {
+        return None;
+    }
+    let best = Course::best(courses)?;
+    let j = courses.iter().position(|c| std::ptr::eq(c, best))?;
+    let (fl, f0, fr) = (
+        courses[(j + m - 1) % m].merit?,
+        best.merit?,
+        courses[(j + 1) % m].merit?,
+    );
+    let h = std::f64::consts::TAU / m as f64;
+    let curvature = fl - 2.0 * f0 + fr;
+    if curvature <= 0.0 {
+        return None;
+    }
+    let offset = (h * (fl - fr) / (2.0 * curvature)).clamp(-h / 2.0, h / 2.0);
+    (offset.abs() > 1e-9 * h).then_some(best.heading + offset)
 }
 
 #[cfg(test)]
@@ -75,6 +106,36 @@ mod tests {
             course(3.0, Some(-7.0)),
         ];
         assert_eq!(Course::best(&t).map(|c| c.heading), Some(1.0));
+    }
+
+    #[test]
+    fn the_vertex_of_a_parabola_is_found_between_the_courses() {
+        // merits (θ − 1)² about eight evenly spaced courses: the vertex is θ = 1
+        let h = std::f64::consts::TAU / 8.0;
+        let t: Vec<Course> = (0..8)
+            .map(|j| {
+                let theta = j as f64 * h;
+                course(theta, Some((theta - 1.0).powi(2)))
+            })
+            .collect();
+        let v = vertex(&t).expect("a vertex");
+        assert!((v - 1.0).abs() < 1e-12, "{v}");
+    }
+
+    #[test]
+    fn no_vertex_without_three_courses_a_neighbour_or_curvature() {
+        assert_eq!(
+            vertex(&[course(0.0, Some(1.0)), course(3.0, Some(0.0))]),
+            None
+        );
+        let t = [
+            course(0.0, Some(0.0)),
+            course(2.0, None),
+            course(4.0, Some(1.0)),
+        ];
+        assert_eq!(vertex(&t), None);
+        let flat = [0.0, 2.0, 4.0].map(|h| course(h, Some(-1.0)));
+        assert_eq!(vertex(&flat), None);
     }
 
     #[test]

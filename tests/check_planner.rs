@@ -602,11 +602,11 @@ fn regression_a_reduced_accuracy_solve_breaks_no_hard_constraint() {
     }
 }
 
-/// `usv.courses = 8` (issue 22): the first window tries eight first courses, one SCP iteration
-/// each, and Step 1 starts from the one of least merit. The plan is then the plan of
+/// `usv.courses = 8` (issue 22): the first window tries eight first courses and one between
+/// them, one SCP iteration each, and Step 1 starts from the one of least merit. The plan is then the plan of
 /// `usv.courses = 1` with `initial_heading` that course (so the choice is reproducible and
 /// nothing else changes), later windows continue their course without trying again, and at
-/// N = 3, seed 7, the team turns off east for a better window (−3722 against −3254: the SCP
+/// N = 3, seed 7, the team turns off east for a better window (−3711 against −3254: the SCP
 /// does not choose the heading on its own; BENCHMARKS.md, "First courses").
 #[test]
 fn first_courses_start_step1_from_the_best_and_plan_as_that_heading_would() {
@@ -620,11 +620,17 @@ fn first_courses_start_step1_from_the_best_and_plan_as_that_heading_would() {
     s.usv.courses = 8;
     let tried = plans_and_passes(&s);
     let courses = &tried.windows[0].courses;
-    assert_eq!(courses.len(), 8);
-    for (j, c) in courses.iter().enumerate() {
-        let expected = j as f64 * std::f64::consts::TAU / 8.0;
-        assert!((c.heading - expected).abs() < 1e-12, "{courses:?}");
+    // eight evenly spaced, then the parabola's vertex next to the best of them
+    assert_eq!(courses.len(), 9);
+    let spacing = std::f64::consts::TAU / 8.0;
+    for (j, c) in courses[..8].iter().enumerate() {
+        assert!(
+            (c.heading - j as f64 * spacing).abs() < 1e-12,
+            "{courses:?}"
+        );
     }
+    let even = shoal::plan::Course::best(&courses[..8]).unwrap();
+    assert!((courses[8].heading - even.heading).abs() <= spacing / 2.0 + 1e-12);
     assert!(tried.windows[1].courses.is_empty());
     let best = shoal::plan::Course::best(courses).expect("a course solved");
     assert!(courses.iter().all(|c| c.merit >= best.merit), "{courses:?}");

@@ -183,8 +183,10 @@ pub struct Usv {
     /// concave OF1_8 is first linearised (its gradient at "not moved" is zero).
     pub initial_heading: f64,
     /// Courses the first window tries with objective = "away": `initial_heading` and
-    /// `courses − 1` more, evenly spaced round the compass. Each first guess gets one SCP
-    /// iteration of P2 and Step 1 starts from the course whose iterate has the least merit.
+    /// `courses − 1` more, evenly spaced round the compass, and from three on one more at the
+    /// vertex of the parabola through the best one's merit and its neighbours'. Each first guess
+    /// gets one SCP iteration of P2 and Step 1 starts from the course whose iterate has the
+    /// least merit.
     /// 1 (the default): `initial_heading` alone.
     pub courses: usize,
     /// What OF1_8 ("away") measures the USV's distance from: the track it has travelled since

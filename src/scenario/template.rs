@@ -131,8 +131,9 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "usv.courses" => {
             "Courses the first window tries with objective = \"away\": initial_heading and \
-             courses − 1 more, evenly spaced round the compass; each first guess gets one SCP \
-             iteration and Step 1 starts from the best. 1: initial_heading alone. Integer 1–72."
+             courses − 1 more, evenly spaced round the compass (from 3 on, one more between the \
+             best and its neighbours); each first guess gets one SCP iteration and Step 1 \
+             starts from the best. 1: initial_heading alone. Integer 1–72."
         }
         "usv.away_from" => {
             "What OF1_8 measures \"away\" from. \"track\" (ours, default): the nearest point \
