@@ -22,6 +22,7 @@ pub const BARELY_MOVES: f64 = 0.1;
 /// Every warning of a plan's windows, in window order.
 pub fn warnings(windows: &[Window], s: &Scenario, floor: &Seafloor) -> Vec<String> {
     let mut out: Vec<String> = more_auvs_than_lanes(s).into_iter().collect();
+    out.extend(courses_unused(s));
     out.extend(unconverged(windows, s));
     for w in windows {
         let edge = grid_edge(w, s, floor);
@@ -53,6 +54,18 @@ fn more_auvs_than_lanes(s: &Scenario) -> Option<String> {
             s.acoustic.max_range,
             s.auv.swath_width,
             2.0 * s.acoustic.max_range,
+        )
+    })
+}
+
+/// The warning for `usv.courses` > 1 with a destination: the first guess heads for it, and no
+/// course is tried.
+fn courses_unused(s: &Scenario) -> Option<String> {
+    (s.usv.courses > 1 && s.usv.objective == UsvObjective::Destination).then(|| {
+        format!(
+            "usv.courses = {} has no effect with usv.objective = \"destination\": the first \
+             guess heads for usv.destination, and no other course is tried",
+            s.usv.courses
         )
     })
 }
@@ -213,5 +226,17 @@ mod tests {
         assert!(w.contains("acoustic.max_range = 400"), "{w}");
         s.auv.swath_width = 0.0;
         assert_eq!(more_auvs_than_lanes(&s), None);
+    }
+
+    #[test]
+    fn courses_with_a_destination_are_told_they_do_nothing() {
+        let mut s = Scenario::default();
+        s.usv.courses = 8;
+        assert_eq!(courses_unused(&s), None);
+        s.usv.objective = UsvObjective::Destination;
+        let w = courses_unused(&s).expect("a warning");
+        assert!(w.starts_with("usv.courses = 8 has no effect"), "{w}");
+        s.usv.courses = 1;
+        assert_eq!(courses_unused(&s), None);
     }
 }
