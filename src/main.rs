@@ -531,9 +531,19 @@ impl Report {
                     ));
                 }
             }
-            Progress::Step1 { window, stage } => self.line(format!(
-                "  window {window}: step 1 (P2) {} after {} SCP iterations in {:.3} s",
-                stage.status, stage.iterations, stage.solve_time_s
+            Progress::Step1 {
+                window,
+                stage,
+                courses,
+            } => self.line(format!(
+                "  window {window}: step 1 (P2) {} after {} SCP iterations{} in {:.3} s",
+                stage.status,
+                stage.iterations,
+                match courses.len() {
+                    0 => String::new(),
+                    m => format!(" from the best of {m} first courses (one iteration each)"),
+                },
+                stage.solve_time_s
             )),
             Progress::Step2 { window, graph } => self.line(format!(
                 "  window {window}: step 2 (P3 + P4) {} graph in {:.4} s",

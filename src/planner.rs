@@ -15,8 +15,8 @@ use crate::error::PlanError;
 use crate::metrics::{first_cut_off, mission_metrics, window_metrics, MetricParams};
 use crate::mission::{check_start, initial_state, next_window, FloorSource};
 use crate::plan::{
-    Graph, LinkReport, Metrics, ModelRecord, ObjectiveTerms, Plan, ScpIteration, Stage, Window,
-    FORMAT,
+    Course, Graph, LinkReport, Metrics, ModelRecord, ObjectiveTerms, Plan, ScpIteration, Stage,
+    Window, FORMAT,
 };
 use crate::scenario::Scenario;
 use crate::scp::{Iteration, ScpOutcome};
@@ -45,6 +45,8 @@ pub enum Progress<'a> {
         window: usize,
         /// Step 1's plan and its SCP record.
         stage: &'a Stage,
+        /// The first courses tried before it (`usv.courses` > 1, first window; else empty).
+        courses: &'a [Course],
     },
     /// Step 2 has ended.
     Step2 {
@@ -261,6 +263,7 @@ fn run(
         progress(Progress::Step1 {
             window: w,
             stage: &step1,
+            courses: &courses,
         });
         // Step 2 (P3, P4), lines 13–16
         let graph = step2::solve(
