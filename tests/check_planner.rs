@@ -158,13 +158,11 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
                 u[2],
                 expected[j]
             );
-            // nothing drives horizontal motion: 1e-10 seen with every model solved to
-            // Clarabel's own tolerance, 1.1e-8 since each is solved only as exactly as the SCP's
-            // stopping test reads it (`scp::ACCURACY_SHARE`). (4e-7 m/s² while a flat floor's
+            // nothing drives horizontal motion: 1e-10 seen. (4e-7 m/s² while a flat floor's
             // segments still bound their squared steps τ ≥ ‖d‖²/d_s by a cone: it resolves the
             // step d to about the square root of the solver's tolerance; `team::trust::proximal`)
             assert!(
-                u[0].abs() <= 1e-7 && u[1].abs() <= 1e-7,
+                u[0].abs() <= 1e-8 && u[1].abs() <= 1e-8,
                 "AUV {a}, U[{j}] = {u:?}"
             );
         }

@@ -96,8 +96,6 @@ pub struct TeamProblem<'a> {
     /// too. Cleared when a candidate is accepted and when a solve starts.
     forced: Vec<Vec<f64>>,
     solver: Option<ConicSolver>,
-    /// The absolute duality gap to which the next model is solved (`ScpProblem::set_accuracy`).
-    gap: f64,
 }
 
 impl<'a> TeamProblem<'a> {
@@ -134,7 +132,6 @@ impl<'a> TeamProblem<'a> {
             terminal: false,
             forced: vec![Vec::new(); layout.n * layout.k],
             solver: None,
-            gap: crate::conic::GAP_TOL,
         }
     }
 
@@ -459,7 +456,6 @@ impl ScpProblem for TeamProblem<'_> {
                 )?)
             }
         };
-        solver.set_gap_tolerance(self.gap);
         let sol = solver.solve();
         if sol.status.infeasible() {
             let culprit = solver.diagnose(&m.b, &m.groups).map(str::to_string);
@@ -498,10 +494,6 @@ impl ScpProblem for TeamProblem<'_> {
         // height term linearised, the slacks penalised
         let model = sol.objective + m.constant;
         Ok((t, model, sol.report()))
-    }
-
-    fn set_accuracy(&mut self, gap: f64) {
-        self.gap = gap;
     }
 
     fn judged(&mut self, candidate: &Trajectory, accepted: bool) {
