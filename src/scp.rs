@@ -78,6 +78,15 @@ pub trait ScpProblem {
     /// the ones a rejected candidate broke, so that the next model about the same reference
     /// is not the same model again. Nothing by default.
     fn judged(&mut self, _candidate: &Self::Iterate, _accepted: bool) {}
+    /// The violation the last model's solution keeps by choice: its penalised slacks, Σ
+    /// weight·ν, in the unit of [`Evaluation::violation`]; None (the default) if the problem
+    /// cannot say. A model that keeps as much violation as its reference has is one whose
+    /// penalty λ is too small (`STANDING_STEPS`), which a true violation alone cannot tell
+    /// from a linearisation's error (the hyperbola of the tests breaks its constraint by
+    /// 10⁻³ with no slack in its model).
+    fn kept_violation(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// One SCP iteration, as the loop reports it to its observer.
@@ -177,6 +186,18 @@ const PENALTY_GROWTH: f64 = 10.0;
 /// Retries, each with half the trust radius, of a convex solve that ends in numerical trouble.
 const TROUBLE_RETRIES: usize = 3;
 const PENALTY_MAX_FACTOR: f64 = 1e4;
+/// Accepted steps in a row whose model kept a violation standing (a candidate that breaks a
+/// constraint by more than `feasibility_tol`, from a model whose penalised slacks keep at least
+/// 1 − [`VIOLATION_PROGRESS`] of the reference's violation, [`ScpProblem::kept_violation`])
+/// before λ grows. The merit then prefers the violation to what removing it costs: λ is too
+/// small for this problem, and converging at that λ only to raise it afterwards wastes the
+/// iterations between (issue 22; issue 13's draw 3033 crawled 45 accepted steps of P5 with a
+/// heading-rate violation fixed at 3.053 rad while its objective fell by 0.2 % a step, to
+/// the iteration limit).
+const STANDING_STEPS: usize = 3;
+/// The share of the reference's violation a model must remove for its step not to count as
+/// leaving the violation standing.
+const VIOLATION_PROGRESS: f64 = 0.1;
 /// The most a single rejected step shrinks the radius by (to below the step's length).
 const MAX_SHRINK: f64 = 16.0;
 /// Accepted iterations after a rejection during which Δ may not grow. Without it a floor that
@@ -215,6 +236,8 @@ where
     // why the loop ends if it does not converge
     let mut status = ScpStatus::MaxIterations;
     let mut troubles = 0usize;
+    // accepted steps in a row that left a violation standing (`STANDING_STEPS`)
+    let mut standing = 0usize;
     // the momentum step: the reference before the last accepted step, Nesterov's t, and
     // whether the steps since the last restart were all good ones
     let mut previous: Option<P::Iterate> = None;
@@ -259,6 +282,11 @@ where
             };
         troubles = 0;
         let candidate_eval = problem.evaluate(&candidate);
+        // the violation the model kept of its own reference's (`steer`)
+        let kept = problem.kept_violation();
+        let model_violation = ahead
+            .as_ref()
+            .map_or(reference_eval.violation, |(_, e)| e.violation);
         let phi_ref = reference_eval.merit(penalty);
         let phi_cand = candidate_eval.merit(penalty);
         // the model's own reference: the extrapolated point in a momentum step
@@ -304,6 +332,14 @@ where
                 if cooldown == 0 {
                     radius = (radius * GROW).min(max_radius);
                 }
+                steer(
+                    &mut standing,
+                    &mut penalty,
+                    settings,
+                    model_violation,
+                    kept,
+                    candidate_eval.max_violation,
+                );
                 previous = Some(std::mem::replace(&mut reference, candidate));
                 reference_eval = candidate_eval;
                 keep_if_best(
@@ -335,6 +371,7 @@ where
             }
             if penalty < settings.penalty * PENALTY_MAX_FACTOR {
                 penalty *= PENALTY_GROWTH;
+                standing = 0;
                 continue;
             }
             status = ScpStatus::Stalled;
@@ -347,6 +384,14 @@ where
             // the momentum builds over good steps (ρ ≥ RHO2: the model is trusted)
             good_run = !first && ratio >= RHO2;
             momentum = if good_run { next_momentum } else { 1.0 };
+            steer(
+                &mut standing,
+                &mut penalty,
+                settings,
+                model_violation,
+                kept,
+                candidate_eval.max_violation,
+            );
             previous = Some(std::mem::replace(&mut reference, candidate));
             reference_eval = candidate_eval;
             have_feasible_reference = true;
@@ -410,6 +455,29 @@ fn keep_if_best<X: Clone>(best: &mut Option<(X, Evaluation)>, x: &X, e: Evaluati
             .map_or(true, |(_, b)| e.objective < b.objective)
     {
         *best = Some((x.clone(), e));
+    }
+}
+
+/// After an accepted step from a reference with violation `before` (Σ, [`Evaluation`]) whose
+/// model kept `kept` of it and whose candidate's largest violation is `after`: count the step
+/// if it left a violation standing, and grow λ after `STANDING_STEPS` such steps in a row (up
+/// to `PENALTY_MAX_FACTOR`·λ₀), as the loop does when it converges with a violation, but
+/// without converging first.
+fn steer(
+    standing: &mut usize,
+    penalty: &mut f64,
+    settings: &Scp,
+    before: f64,
+    kept: Option<f64>,
+    after: f64,
+) {
+    let tol = settings.feasibility_tol;
+    let stands = after > tol
+        && kept.is_some_and(|kept| kept > tol && kept >= (1.0 - VIOLATION_PROGRESS) * before);
+    *standing = if stands { *standing + 1 } else { 0 };
+    if *standing >= STANDING_STEPS && *penalty < settings.penalty * PENALTY_MAX_FACTOR {
+        *penalty *= PENALTY_GROWTH;
+        *standing = 0;
     }
 }
 
@@ -529,6 +597,83 @@ mod tests {
         fn numerical_trouble(&self, e: &Fail) -> bool {
             *e == Fail::Trouble
         }
+    }
+
+    /// min −x s.t. x ≤ 1, whose model is the problem itself: the merit −x + λ·max(0, x − 1)
+    /// has its minimum at x = 1 for λ > 1 and none for λ < 1 (it falls without end past 1).
+    /// `kept`: the violation the last model's solution kept.
+    struct Ceiling {
+        kept: f64,
+    }
+
+    impl ScpProblem for Ceiling {
+        type Iterate = f64;
+        type Error = Fail;
+        type Report = ();
+        fn solve_model(
+            &mut self,
+            r: &f64,
+            radius: f64,
+            penalty: f64,
+        ) -> Result<(f64, f64, ()), Fail> {
+            let x = if penalty < 1.0 {
+                r + radius
+            } else {
+                1.0f64.clamp(r - radius, r + radius)
+            };
+            self.kept = (x - 1.0).max(0.0);
+            Ok((x, -x + penalty * self.kept, ()))
+        }
+        fn kept_violation(&self) -> Option<f64> {
+            Some(self.kept)
+        }
+        fn evaluate(&self, x: &f64) -> Evaluation {
+            let v = (x - 1.0).max(0.0);
+            Evaluation {
+                objective: -x,
+                violation: v,
+                max_violation: v,
+                magnitude: x.abs(),
+            }
+        }
+        fn infeasible(&self, _: &f64) -> Fail {
+            Fail::Other
+        }
+    }
+
+    /// Issue 22 (issue 13's draw 3033): a penalty too small for the problem is raised after
+    /// `STANDING_STEPS` accepted steps that leave a violation standing, not only when the loop
+    /// converges with it. With λ₀ = 0.5 each model steps x up by the whole (growing) radius,
+    /// predicting a decrease that never becomes negligible: the loop used to walk past the
+    /// ceiling to its iteration limit. Steered, λ becomes 5 after three such steps and the
+    /// next step lands on the optimum x = 1.
+    #[test]
+    fn a_violation_left_standing_raises_the_penalty_before_convergence() {
+        let settings = Scp {
+            trust_region: 0.5,
+            penalty: 0.5,
+            tolerance: 1e-7,
+            ..Scp::default()
+        };
+        let mut violations = Vec::new();
+        let out = solve(&mut Ceiling { kept: 0.0 }, 0.0, &settings, &mut |it| {
+            violations.push(it.violation)
+        })
+        .unwrap();
+        assert_eq!(out.status, ScpStatus::Converged);
+        assert!((out.iterate - 1.0).abs() < 1e-12, "x = {}", out.iterate);
+        assert_eq!(out.evaluation.max_violation, 0.0);
+        // two feasible steps (0.5, then 1 with the radius grown to 1), three that leave the
+        // violation standing (x = 2, 4, 8), the step back to the ceiling and the negligible
+        // one that ends the loop
+        assert_eq!(out.iterations, 7, "violations {violations:?}");
+        assert_eq!(
+            violations
+                .iter()
+                .filter(|&&v| v > settings.feasibility_tol)
+                .count(),
+            STANDING_STEPS
+        );
     }
 
     /// The SCP settings of the hyperbola tests: a tight tolerance, a small first radius.

@@ -149,8 +149,8 @@ pub fn needed(s: &Scenario, start: &Start, set: &LinkSet) -> Vec<Bridge> {
 pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
     let l = p.layout;
     for b in 0..p.bridges.len() {
-        m.q[l.bridge_slack(b)] = penalty;
-        m.q[l.bridge_los_slack(b)] = penalty;
+        m.penalise(l.bridge_slack(b), 1.0, penalty);
+        m.penalise(l.bridge_los_slack(b), 1.0, penalty);
     }
 }
 

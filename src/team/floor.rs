@@ -56,7 +56,7 @@ pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
     let l = p.layout;
     for n in 0..l.n {
         for k in 1..=l.k {
-            m.q[l.floor_slack(n, k)] = penalty;
+            m.penalise(l.floor_slack(n, k), 1.0, penalty);
         }
     }
 }

@@ -286,7 +286,7 @@ pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
     let dt = p.scenario.horizon.dt;
     for n in 0..l.n {
         for k in 1..=l.k {
-            m.q[l.heading_slack(n, k)] = penalty * dt; // m/s → m over one step
+            m.penalise(l.heading_slack(n, k), dt, penalty); // m/s → m over one step
         }
     }
 }

@@ -58,10 +58,10 @@ pub(super) fn objective(p: &TeamProblem, m: &mut Assembly, penalty: f64) {
     let l = p.layout;
     for k in 1..=l.k {
         if l.obstacles {
-            m.q[l.usv_slack(k)] = penalty;
+            m.penalise(l.usv_slack(k), 1.0, penalty);
         }
         for li in 0..l.links {
-            m.q[l.los_slack(li, k)] = penalty;
+            m.penalise(l.los_slack(li, k), 1.0, penalty);
         }
     }
 }

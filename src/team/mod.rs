@@ -96,6 +96,8 @@ pub struct TeamProblem<'a> {
     /// too. Cleared when a candidate is accepted and when a solve starts.
     forced: Vec<Vec<f64>>,
     solver: Option<ConicSolver>,
+    /// The violation the last model's solution kept (`Assembly::kept_violation`).
+    kept: f64,
 }
 
 impl<'a> TeamProblem<'a> {
@@ -131,6 +133,7 @@ impl<'a> TeamProblem<'a> {
             least: Vec::new(),
             terminal: false,
             forced: vec![Vec::new(); layout.n * layout.k],
+            kept: 0.0,
             solver: None,
         }
     }
@@ -493,7 +496,12 @@ impl ScpProblem for TeamProblem<'_> {
         // model merit L(x*) = ½x*ᵀPx* + qᵀx* + constant: the convex terms exact, OF1_8 and the
         // height term linearised, the slacks penalised
         let model = sol.objective + m.constant;
+        self.kept = m.kept_violation(&sol.x);
         Ok((t, model, sol.report()))
+    }
+
+    fn kept_violation(&self) -> Option<f64> {
+        Some(self.kept)
     }
 
     fn judged(&mut self, candidate: &Trajectory, accepted: bool) {
