@@ -360,6 +360,9 @@ pub struct ConicSolver {
     cones: Vec<SupportedConeT<f64>>,
     /// x = scale ∘ x̃ (all ones without `with_scale`).
     scale: Vec<f64>,
+    /// Clarabel's absolute duality-gap tolerance for the next solves ([`GAP_TOL`] until
+    /// [`ConicSolver::set_gap_tolerance`]).
+    gap_abs: f64,
 }
 
 impl ConicSolver {
@@ -379,6 +382,7 @@ impl ConicSolver {
             a,
             cones: cones.to_vec(),
             scale,
+            gap_abs: GAP_TOL,
         })
     }
 
@@ -407,7 +411,34 @@ impl ConicSolver {
             a,
             cones: cones.to_vec(),
             scale,
+            gap_abs: GAP_TOL,
         })
+    }
+
+    /// Solve the next models only until their absolute duality gap is below `gap_abs` (in the
+    /// objective's own units; never tighter than [`GAP_TOL`], which stays the relative
+    /// tolerance, nor than the feasibility tolerance [`FEAS_TOL`], which is unchanged: every
+    /// constraint holds as exactly as before, only the objective stops nearer or farther from
+    /// its optimum). Clarabel stops when either the absolute or the relative gap is met.
+    pub fn set_gap_tolerance(&mut self, gap_abs: f64) {
+        let gap_abs = if gap_abs.is_finite() {
+            gap_abs.max(GAP_TOL)
+        } else {
+            GAP_TOL
+        };
+        if gap_abs != self.gap_abs {
+            self.gap_abs = gap_abs;
+            // settings that validate once validate with another positive tolerance
+            let _ = self.solver.update_settings(self.settings());
+        }
+    }
+
+    /// [`settings`] with this solver's gap tolerance.
+    fn settings(&self) -> DefaultSettings<f64> {
+        DefaultSettings {
+            tol_gap_abs: self.gap_abs,
+            ..settings()
+        }
     }
 
     /// The [`Fill`] of this model's factorisation.
@@ -474,13 +505,13 @@ impl ConicSolver {
         let status = SolverStatus::from(self.solver.solution.status);
         if status.numerical_trouble() || status == SolverStatus::AlmostSolved {
             let first = self.solver.solution.solve_time;
-            let mut refined = settings();
+            let mut refined = self.settings();
             refined.iterative_refinement_enable = true;
             if self.solver.update_settings(refined).is_ok() {
                 self.solver.solve();
                 self.solver.solution.solve_time += first;
                 // back to the fast settings for the next solve
-                let _ = self.solver.update_settings(settings());
+                let _ = self.solver.update_settings(self.settings());
             }
         }
         let s = &self.solver.solution;
@@ -581,6 +612,59 @@ mod tests {
     #[test]
     fn scaled_variables_give_the_same_solution_in_the_callers_units() {
         projection_survives_an_update(Some(vec![10.0, 0.1]));
+    }
+
+    /// min Σ‖x_i − c_i‖² s.t. ‖x_i‖ ≤ 1 for 40 points c_i outside the unit disc: the optimum
+    /// projects each onto the circle, objective (in ½xᵀPx + qᵀx = Σ‖x_i − c_i‖² − ‖c_i‖²)
+    /// Σ(‖c_i‖ − 1)² − ‖c_i‖². Solved to an absolute gap of 10⁻², the objective is within
+    /// 10⁻² of that (10⁻³ above it) and every cone holds as exactly as at the default
+    /// tolerance, in fewer interior-point iterations (4 against 5).
+    #[test]
+    fn a_looser_gap_stops_within_it_and_keeps_the_constraints() {
+        let n = 40;
+        let (mut pt, mut at) = (Triplets::default(), Triplets::default());
+        let (mut q, mut b, mut cones) = (vec![0.0; 2 * n], Vec::new(), Vec::new());
+        let mut optimum = 0.0;
+        for i in 0..n {
+            let angle = i as f64 * 0.7;
+            let c = [
+                (2.0 + (i % 3) as f64) * angle.cos(),
+                (2.0 + (i % 3) as f64) * angle.sin(),
+            ];
+            let norm = c[0].hypot(c[1]);
+            optimum += (norm - 1.0).powi(2) - norm * norm;
+            for d in 0..2 {
+                pt.push(2 * i + d, 2 * i + d, 2.0);
+                q[2 * i + d] = -2.0 * c[d];
+            }
+            b.extend([1.0, 0.0, 0.0]);
+            at.push(3 * i + 1, 2 * i, -1.0);
+            at.push(3 * i + 2, 2 * i + 1, -1.0);
+            cones.push(SecondOrderConeT(3));
+        }
+        let solve = |gap: Option<f64>| {
+            let (p, a) = (
+                Pattern::new(2 * n, 2 * n, &pt),
+                Pattern::new(3 * n, 2 * n, &at),
+            );
+            let mut s = ConicSolver::new(p, &q, a, &b, &cones).unwrap();
+            if let Some(g) = gap {
+                s.set_gap_tolerance(g);
+            }
+            s.solve()
+        };
+        let (exact, loose) = (solve(None), solve(Some(1e-2)));
+        assert!(exact.usable() && loose.usable());
+        assert!((exact.objective - optimum).abs() < 1e-4 * optimum.abs());
+        assert!(
+            loose.objective - optimum < 1e-2,
+            "{} against {optimum}",
+            loose.objective
+        );
+        assert!(loose.iterations < exact.iterations);
+        for i in 0..n {
+            assert!(loose.x[2 * i].hypot(loose.x[2 * i + 1]) <= 1.0 + 1e-6);
+        }
     }
 
     /// x ≥ 1 (group "lower") and x ≤ 0 (group "upper") conflict; y ≤ 5 ("other") does not.

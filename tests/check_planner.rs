@@ -158,11 +158,13 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
                 u[2],
                 expected[j]
             );
-            // nothing drives horizontal motion: 1e-10 seen. (4e-7 m/s² while a flat floor's
+            // nothing drives horizontal motion: 1e-10 seen with every model solved to
+            // Clarabel's own tolerance, 1.1e-8 since each is solved only as exactly as the SCP's
+            // stopping test reads it (`scp::ACCURACY_SHARE`). (4e-7 m/s² while a flat floor's
             // segments still bound their squared steps τ ≥ ‖d‖²/d_s by a cone: it resolves the
             // step d to about the square root of the solver's tolerance; `team::trust::proximal`)
             assert!(
-                u[0].abs() <= 1e-8 && u[1].abs() <= 1e-8,
+                u[0].abs() <= 1e-7 && u[1].abs() <= 1e-7,
                 "AUV {a}, U[{j}] = {u:?}"
             );
         }
@@ -400,6 +402,36 @@ fn regression_a_window_that_starts_at_the_grid_edge_plans() {
         }
         .scenario(),
     );
+    assert_eq!(p.metrics.connected_fraction, 1.0);
+}
+
+/// Regression (issue 13's sweep, draw 3033: N = 7, K = 31, δ = 17.7 s, d_s = 104 m, 4
+/// windows, AUVs at 1.12 m/s, USV 0.85 m/s): with each model solved only as exactly as the
+/// stopping test reads it, window 3's Step 3 crawled 45 accepted steps at λ = 10³ with a C1_14
+/// violation fixed at 3.053 rad (an AUV turning back at step 1), to the iteration limit, and the
+/// mission was refused: "the acoustic chain breaks at window 3, step 1". The SCP now raises λ
+/// after 3 steps whose model keeps a violation standing; every window converges.
+#[test]
+fn regression_a_penalty_too_small_for_a_window_is_raised_before_the_iteration_limit() {
+    let p = plans_and_passes(
+        &Draw {
+            seed: 426739,
+            windows: 4,
+            auvs: 7,
+            steps: 31,
+            dt: 17.650438544454836,
+            sonar_range: 103.75421693149525,
+            auv_speed: 1.1166807188525294,
+            usv_speed: 0.8483980611969648,
+            seamounts: 53,
+            valleys: 21,
+        }
+        .scenario(),
+    );
+    assert_eq!(p.windows.len(), 4);
+    for w in &p.windows {
+        assert_eq!(w.final_.status, "converged", "window {}", w.index);
+    }
     assert_eq!(p.metrics.connected_fraction, 1.0);
 }
 

@@ -96,6 +96,8 @@ pub struct TeamProblem<'a> {
     /// too. Cleared when a candidate is accepted and when a solve starts.
     forced: Vec<Vec<f64>>,
     solver: Option<ConicSolver>,
+    /// The absolute duality gap to which the next model is solved (`ScpProblem::set_accuracy`).
+    gap: f64,
     /// The violation the last model's solution kept (`Assembly::kept_violation`).
     kept: f64,
 }
@@ -135,6 +137,7 @@ impl<'a> TeamProblem<'a> {
             forced: vec![Vec::new(); layout.n * layout.k],
             kept: 0.0,
             solver: None,
+            gap: crate::conic::GAP_TOL,
         }
     }
 
@@ -459,6 +462,7 @@ impl ScpProblem for TeamProblem<'_> {
                 )?)
             }
         };
+        solver.set_gap_tolerance(self.gap);
         let sol = solver.solve();
         if sol.status.infeasible() {
             let culprit = solver.diagnose(&m.b, &m.groups).map(str::to_string);
@@ -498,6 +502,10 @@ impl ScpProblem for TeamProblem<'_> {
         let model = sol.objective + m.constant;
         self.kept = m.kept_violation(&sol.x);
         Ok((t, model, sol.report()))
+    }
+
+    fn set_accuracy(&mut self, gap: f64) {
+        self.gap = gap;
     }
 
     fn kept_violation(&self) -> Option<f64> {
