@@ -381,6 +381,10 @@ pub struct ScpIteration {
     pub accepted: bool,
     /// Largest true constraint violation of the candidate.
     pub violation: f64,
+    /// λ, the penalty of the merit function at this iteration (`merit_before`, `merit_after`
+    /// and `predicted` are measured with it). Absent in older plans.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub penalty: Option<f64>,
     /// Whether the subproblem was a momentum step, its model built about the reference
     /// extrapolated along its last step (`scp.momentum`): `predicted` and `ratio` are then
     /// measured from the extrapolated point, and the step is accepted only if it lowers the

@@ -181,6 +181,7 @@ fn iteration_record(it: &Iteration<SolveReport>) -> ScpIteration {
         ratio: it.ratio,
         accepted: it.accepted,
         violation: it.violation,
+        penalty: Some(it.penalty),
         extrapolated: it.extrapolated,
         solver_status: it.solve.status.to_string(),
         solver_iterations: it.solve.iterations,

@@ -111,6 +111,9 @@ pub struct Iteration<R> {
     pub accepted: bool,
     /// The candidate's largest true violation.
     pub violation: f64,
+    /// λ, the penalty of the merit at this iteration (the merits and the prediction are
+    /// measured with it; it grows when violations persist, `STANDING_STEPS`).
+    pub penalty: f64,
     /// Whether the model was built about the extrapolated point of the momentum step (then
     /// `merit_before` is still the reference's, and `predicted` and `ratio` are measured from
     /// the extrapolated point).
@@ -331,6 +334,7 @@ where
             ratio,
             accepted: false,
             violation: candidate_eval.max_violation,
+            penalty,
             extrapolated: ahead.is_some(),
             solve: report,
         };
@@ -676,11 +680,15 @@ mod tests {
             tolerance: 1e-7,
             ..Scp::default()
         };
-        let mut violations = Vec::new();
+        let (mut violations, mut penalties) = (Vec::new(), Vec::new());
         let out = solve(&mut Ceiling { kept: 0.0 }, 0.0, &settings, &mut |it| {
-            violations.push(it.violation)
+            violations.push(it.violation);
+            penalties.push(it.penalty);
         })
         .unwrap();
+        // each iteration reports the λ its merits were measured with: λ₀ for the five steps up
+        // to the third standing one, then 10·λ₀
+        assert_eq!(penalties, [0.5, 0.5, 0.5, 0.5, 0.5, 5.0, 5.0]);
         assert_eq!(out.status, ScpStatus::Converged);
         assert!((out.iterate - 1.0).abs() < 1e-12, "x = {}", out.iterate);
         assert_eq!(out.evaluation.max_violation, 0.0);

@@ -433,6 +433,13 @@ fn regression_a_penalty_too_small_for_a_window_is_raised_before_the_iteration_li
         assert_eq!(w.final_.status, "converged", "window {}", w.index);
     }
     assert_eq!(p.metrics.connected_fraction, 1.0);
+    // the plan's SCP log shows the penalty raised in Step 3 of a later window
+    let lambda0 = p.scenario.scp.penalty;
+    assert!(p.windows[1..].iter().any(|w| w
+        .final_
+        .scp
+        .iter()
+        .any(|it| it.penalty.is_some_and(|l| l > lambda0))));
 }
 
 /// Regression (issue 13's sweep, draw 1016: N = 2, d_s = 364 m, AUVs at 0.86 m/s behind a USV

@@ -880,6 +880,7 @@ fn converged_log() -> Vec<shoal::plan::ScpIteration> {
         ratio: 1.0,
         accepted: false,
         violation: 0.0,
+        penalty: Some(1e3),
         extrapolated: false,
         solver_status: "Solved".into(),
         solver_iterations: 10,
