@@ -305,11 +305,15 @@ where
             };
         troubles = 0;
         let candidate_eval = problem.evaluate(&candidate);
-        // the violation the model kept of its own reference's (`steer`)
-        let kept = problem.kept_violation();
-        let model_violation = ahead
-            .as_ref()
-            .map_or(reference_eval.violation, |(_, e)| e.violation);
+        // whether the model kept its own reference's violation standing (`steer`)
+        let stands = stands(
+            settings,
+            ahead
+                .as_ref()
+                .map_or(reference_eval.violation, |(_, e)| e.violation),
+            problem.kept_violation(),
+            candidate_eval.max_violation,
+        );
         let phi_ref = reference_eval.merit(penalty);
         let phi_cand = candidate_eval.merit(penalty);
         // the model's own reference: the extrapolated point in a momentum step
@@ -357,14 +361,7 @@ where
                 if cooldown == 0 {
                     radius = (radius * GROW).min(max_radius);
                 }
-                steer(
-                    &mut standing,
-                    &mut penalty,
-                    settings,
-                    model_violation,
-                    kept,
-                    candidate_eval.max_violation,
-                );
+                steer(&mut standing, &mut penalty, settings, stands);
                 previous = Some(std::mem::replace(&mut reference, candidate));
                 reference_eval = candidate_eval;
                 keep_if_best(
@@ -409,14 +406,7 @@ where
             // the momentum builds over good steps (ρ ≥ RHO2: the model is trusted)
             good_run = !first && ratio >= RHO2;
             momentum = if good_run { next_momentum } else { 1.0 };
-            steer(
-                &mut standing,
-                &mut penalty,
-                settings,
-                model_violation,
-                kept,
-                candidate_eval.max_violation,
-            );
+            steer(&mut standing, &mut penalty, settings, stands);
             previous = Some(std::mem::replace(&mut reference, candidate));
             reference_eval = candidate_eval;
             have_feasible_reference = true;
@@ -483,22 +473,19 @@ fn keep_if_best<X: Clone>(best: &mut Option<(X, Evaluation)>, x: &X, e: Evaluati
     }
 }
 
-/// After an accepted step from a reference with violation `before` (Σ, [`Evaluation`]) whose
-/// model kept `kept` of it and whose candidate's largest violation is `after`: count the step
-/// if it left a violation standing, and grow λ after `STANDING_STEPS` such steps in a row (up
-/// to `PENALTY_MAX_FACTOR`·λ₀), as the loop does when it converges with a violation, but
-/// without converging first.
-fn steer(
-    standing: &mut usize,
-    penalty: &mut f64,
-    settings: &Scp,
-    before: f64,
-    kept: Option<f64>,
-    after: f64,
-) {
+/// Whether a step from a model reference with violation `before` (Σ, [`Evaluation`]), whose
+/// model kept `kept` of it and whose candidate's largest violation is `after`, leaves a
+/// violation standing (`STANDING_STEPS`).
+fn stands(settings: &Scp, before: f64, kept: Option<f64>, after: f64) -> bool {
     let tol = settings.feasibility_tol;
-    let stands = after > tol
-        && kept.is_some_and(|kept| kept > tol && kept >= (1.0 - VIOLATION_PROGRESS) * before);
+    after > tol
+        && kept.is_some_and(|kept| kept > tol && kept >= (1.0 - VIOLATION_PROGRESS) * before)
+}
+
+/// After an accepted step that did (`stands`) or did not leave a violation standing: count it,
+/// and grow λ after `STANDING_STEPS` such steps in a row (up to `PENALTY_MAX_FACTOR`·λ₀), as
+/// the loop does when it converges with a violation, but without converging first.
+fn steer(standing: &mut usize, penalty: &mut f64, settings: &Scp, stands: bool) {
     *standing = if stands { *standing + 1 } else { 0 };
     if *standing >= STANDING_STEPS && *penalty < settings.penalty * PENALTY_MAX_FACTOR {
         *penalty *= PENALTY_GROWTH;
