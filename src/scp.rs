@@ -22,7 +22,9 @@
 //! its last step (Nesterov's sequence) and its candidate kept only if it lowers the merit by
 //! more than the tolerance: the linearised concave terms make the model a majorant, whose
 //! steps shrink geometrically (docs/method.md, "Momentum steps"). Each model is solved only to
-//! the accuracy the stopping test reads (`ACCURACY_SHARE`), and the test allows for it.
+//! the accuracy the stopping test reads (`ACCURACY_SHARE`), and the test allows for it. The
+//! loop that stops converged ends on its last candidate if that one is feasible and better
+//! (`ScpProblem::ends_on_a_better_candidate`): it was solved and judged already.
 
 use crate::scenario::Scp;
 use std::time::Instant;
@@ -55,6 +57,13 @@ pub trait ScpProblem {
         _beta: f64,
     ) -> Option<Self::Iterate> {
         None
+    }
+    /// Whether the loop, stopping converged, may end on its last candidate rather than on its
+    /// reference, when that candidate meets every constraint (within `scp.feasibility_tol`)
+    /// and has the lower merit. The model predicted a negligible decrease, but the candidate
+    /// was solved and judged already: the better point costs nothing. True by default.
+    fn ends_on_a_better_candidate(&self) -> bool {
+        true
     }
     /// The length of the step from `from` to `to` in the trust region's own norm, or None
     /// (the default) if the problem cannot say. A rejected step then shrinks the radius to
@@ -381,16 +390,28 @@ where
 
         if negligible {
             iterations += 1;
-            observer(&record);
-            if reference_eval.max_violation <= settings.feasibility_tol {
+            let feasible = |e: &Evaluation| e.max_violation <= settings.feasibility_tol;
+            if feasible(&reference_eval) {
+                // the last candidate, solved and judged already, if it is feasible and better
+                let better = feasible(&candidate_eval)
+                    && phi_cand < phi_ref
+                    && problem.ends_on_a_better_candidate();
+                record.accepted = better;
+                observer(&record);
+                let (iterate, evaluation) = if better {
+                    (candidate, candidate_eval)
+                } else {
+                    (reference, reference_eval)
+                };
                 return Ok(ScpOutcome {
-                    iterate: reference,
+                    iterate,
                     status: ScpStatus::Converged,
-                    evaluation: reference_eval,
+                    evaluation,
                     iterations,
                     solve_time_s: start.elapsed().as_secs_f64(),
                 });
             }
+            observer(&record);
             if penalty < settings.penalty * PENALTY_MAX_FACTOR {
                 penalty *= PENALTY_GROWTH;
                 standing = 0;
@@ -845,6 +866,16 @@ mod tests {
     /// issue 22. The optimum is x* = a·t/(a − b).
     struct Tail {
         solver: Option<ConicSolver>,
+        /// `ScpProblem::ends_on_a_better_candidate`.
+        ends_on_candidate: bool,
+    }
+    impl Tail {
+        fn new() -> Tail {
+            Tail {
+                solver: None,
+                ends_on_candidate: true,
+            }
+        }
     }
     const A: f64 = 1.0;
     const B: f64 = 0.95;
@@ -888,6 +919,9 @@ mod tests {
         fn step_length(&self, a: &[f64; 2], b: &[f64; 2]) -> Option<f64> {
             Some((a[0] - b[0]).hypot(a[1] - b[1]))
         }
+        fn ends_on_a_better_candidate(&self) -> bool {
+            self.ends_on_candidate
+        }
         fn evaluate(&self, x: &[f64; 2]) -> Evaluation {
             let f = A / 2.0 * ((x[0] - T[0]).powi(2) + (x[1] - T[1]).powi(2))
                 - B / 2.0 * (x[0] * x[0] + x[1] * x[1]);
@@ -901,6 +935,43 @@ mod tests {
         fn infeasible(&self, _: &[f64; 2]) -> Fail {
             Fail::Other
         }
+    }
+
+    /// Issue 22: the loop that stops converged ends on its last candidate, which it solved and
+    /// judged already, when that one is feasible and better than the reference; the problem
+    /// can decline it (P2 does: `TeamProblem::ends_on_a_better_candidate`), and the loop then
+    /// ends on the reference, one tail step behind.
+    #[test]
+    fn a_converged_loop_ends_on_its_last_candidate_when_that_one_is_better() {
+        let settings = Scp {
+            trust_region: 100.0,
+            tolerance: 1e-3,
+            max_iterations: 1000,
+            ..Scp::default()
+        };
+        let run = |ends_on_candidate: bool| {
+            let mut log = Vec::new();
+            let mut tail = Tail {
+                ends_on_candidate,
+                ..Tail::new()
+            };
+            let out = solve(&mut tail, [0.0, 0.0], &settings, &mut |it| {
+                log.push(it.clone())
+            })
+            .unwrap();
+            assert_eq!(out.status, ScpStatus::Converged);
+            (out, log)
+        };
+        let (kept, log) = run(true);
+        let last = log.last().unwrap();
+        assert!(last.accepted, "the last candidate is kept");
+        assert!(last.merit_after < last.merit_before);
+        assert_eq!(kept.evaluation.objective, last.merit_after);
+        let (declined, log2) = run(false);
+        assert_eq!(log2.len(), log.len(), "the same iterations either way");
+        assert!(!log2.last().unwrap().accepted);
+        assert_eq!(declined.evaluation.objective, last.merit_before);
+        assert!(kept.evaluation.objective < declined.evaluation.objective);
     }
 
     /// Issue 22: a rejected step shrinks the radius to half the step it took, at most 16-fold
@@ -927,13 +998,7 @@ mod tests {
                 momentum,
                 ..Scp::default()
             };
-            let out = solve(
-                &mut Tail { solver: None },
-                [0.0, 0.0],
-                &settings,
-                &mut |_| {},
-            )
-            .unwrap();
+            let out = solve(&mut Tail::new(), [0.0, 0.0], &settings, &mut |_| {}).unwrap();
             assert_eq!(out.status, ScpStatus::Converged);
             for i in 0..2 {
                 assert!(

@@ -302,7 +302,7 @@ impl Checker<'_> {
     /// The stage's SCP log against what the stage claims: as many entries as iterations, every
     /// number finite, every convex solve usable (Solved or AlmostSolved), and a status its log
     /// bears out: "converged" ends on the iteration that found no decrease left (not
-    /// accepted); "max_iterations" ran `scp.max_iterations` iterations (in its last
+    /// accepted, or accepted as a feasible candidate of lower merit); "max_iterations" ran `scp.max_iterations` iterations (in its last
     /// line-of-sight round, so at least that many); "stalled" ends with a trust region below
     /// `MAX_SHRINK` times `scp.min_trust_region` (a rejected step shrinks it at most that much
     /// after the entry) or on an iteration that found no decrease; "solver_trouble" (the
@@ -348,7 +348,14 @@ impl Checker<'_> {
         };
         let scp = &self.s.scp;
         let (holds, claim) = match st.status.as_str() {
-            "converged" => (!last.accepted, "its last iteration was accepted"),
+            // the loop may end on a last candidate that was feasible and better
+            "converged" => (
+                !last.accepted
+                    || (last.merit_after < last.merit_before
+                        && last.violation <= scp.feasibility_tol),
+                "its last iteration was an accepted step that did not lower the merit or \
+                 broke a constraint",
+            ),
             "max_iterations" => (
                 st.iterations >= scp.max_iterations,
                 "it ran fewer than scp.max_iterations iterations",

@@ -900,8 +900,22 @@ fn regression_an_scp_status_its_log_contradicts_fails_structure() {
         f(&mut p);
         check_plan(&p, &floor)
     };
-    // "converged" on an iteration that was accepted (a converged SCP ends on one that was not)
+    // "converged" on an iteration that was accepted and did not lower the merit (a converged
+    // SCP ends on one that was not accepted, or on a feasible last candidate that was better)
     let r = tamper(&|p| p.windows[0].final_.scp[0].accepted = true);
+    assert_fails_exactly(&r, &["structure"]);
+    let better = |p: &mut Plan| {
+        let it = &mut p.windows[0].final_.scp[0];
+        it.accepted = true;
+        it.merit_after = it.merit_before - 1.0;
+    };
+    let r = tamper(&better);
+    assert!(r.passed(), "\n{}", r.table());
+    // ... but not on one that broke a constraint beyond scp.feasibility_tol
+    let r = tamper(&|p| {
+        better(p);
+        p.windows[0].final_.scp[0].violation = 0.1;
+    });
     assert_fails_exactly(&r, &["structure"]);
     // "max_iterations" after 1 of scp.max_iterations iterations
     let r = tamper(&|p| p.windows[0].step1.status = "max_iterations".into());
