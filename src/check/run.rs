@@ -302,8 +302,9 @@ impl Checker<'_> {
     /// The stage's SCP log against what the stage claims: as many entries as iterations, every
     /// number finite, every convex solve usable (Solved or AlmostSolved), and a status its log
     /// bears out: "converged" ends on the iteration that found no decrease left (not
-    /// accepted, or accepted as a feasible candidate of lower merit); "max_iterations" ran `scp.max_iterations` iterations (in its last
-    /// line-of-sight round, so at least that many); "stalled" ends with a trust region below
+    /// accepted, or accepted as a feasible candidate of lower merit); "max_iterations" ran
+    /// `scp.max_iterations` iterations (in its last line-of-sight round, so at least that
+    /// many); "stalled" ends with a trust region below
     /// `MAX_SHRINK` times `scp.min_trust_region` (a rejected step shrinks it at most that much
     /// after the entry) or on an iteration that found no decrease; "solver_trouble" (the
     /// convex solver failed at every radius tried after the last entry, solves the log does
