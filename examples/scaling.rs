@@ -139,6 +139,9 @@ fn main() {
                 } else {
                     s.scp.tolerance = 1e-7;
                     s.scp.max_iterations = 300;
+                    // both stages, whatever Step 1's own settings were
+                    s.scp.step1_tolerance = None;
+                    s.scp.step1_max_iterations = None;
                     measure(&s, &floor).ok()
                 };
                 let mut ipm: Vec<f64> = run.ipm.iter().map(|&i| i as f64).collect();

@@ -75,18 +75,34 @@ fn unconverged(windows: &[Window], s: &Scenario) -> Vec<String> {
     let mut out = Vec::new();
     for w in windows {
         for (name, st) in [("step 1 (P2)", &w.step1), ("step 3 (P5)", &w.final_)] {
+            // the keys that set this stage's limit and tolerance
+            let step1 = std::ptr::eq(st, &w.step1);
+            let (limit, tolerance) = match (step1, &s.scp) {
+                (true, scp) => (
+                    match scp.step1_max_iterations {
+                        Some(n) => format!("scp.step1_max_iterations = {n}"),
+                        None => format!("scp.max_iterations = {}", scp.max_iterations),
+                    },
+                    match scp.step1_tolerance {
+                        Some(t) => format!("scp.step1_tolerance = {t}"),
+                        None => format!("scp.tolerance = {}", scp.tolerance),
+                    },
+                ),
+                (false, scp) => (
+                    format!("scp.max_iterations = {}", scp.max_iterations),
+                    format!("scp.tolerance = {}", scp.tolerance),
+                ),
+            };
             let why = match st.status.as_str() {
                 "converged" => continue,
                 "max_iterations" => format!(
-                    "stopped at scp.max_iterations = {} before its predicted decrease fell below \
-                     scp.tolerance = {}",
-                    s.scp.max_iterations, s.scp.tolerance
+                    "stopped at {limit} before its predicted decrease fell below {tolerance}"
                 ),
                 "stalled" => format!(
                     "stalled: its trust region shrank below scp.min_trust_region = {} m (or its \
                      penalty reached its limit) before its predicted decrease fell below \
-                     scp.tolerance = {}",
-                    s.scp.min_trust_region, s.scp.tolerance
+                     {tolerance}",
+                    s.scp.min_trust_region
                 ),
                 "solver_trouble" => "stopped: the convex solver (Clarabel) ended in numerical \
                                      trouble at every trust radius tried"

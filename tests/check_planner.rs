@@ -686,3 +686,45 @@ fn first_courses_start_step1_from_the_best_and_plan_as_that_heading_would() {
     let j = |p: &shoal::plan::Plan| p.windows[0].final_.objective.total;
     assert!(j(&tried) < j(&east), "{} against {}", j(&tried), j(&east));
 }
+
+/// `scp.step1_tolerance` and `scp.step1_max_iterations` set Step 1's (P2's) own stopping rule,
+/// and the checker reads a Step 1 status against that limit. At N = 3, seed 1, Step 1's tail is
+/// a slow turn of the whole team (BENCHMARKS.md, "Where the gap comes from, stage by stage"):
+/// run to the converged run's tolerance it takes many more iterations and ends with a better
+/// Step 1 plan and a better window; stopped after one iteration it says so, and Step 3 keeps
+/// its own limit.
+#[test]
+fn step1_runs_to_its_own_tolerance_and_limit_and_the_check_reads_them() {
+    let mut s = Scenario::default();
+    s.team.auvs = 3;
+    let base = plans_and_passes(&s);
+
+    s.scp.step1_tolerance = Some(1e-7);
+    s.scp.step1_max_iterations = Some(300);
+    let turned = plans_and_passes(&s);
+    let (b, t) = (&base.windows[0], &turned.windows[0]);
+    assert_eq!(t.step1.status, "converged");
+    assert!(
+        t.step1.iterations > 10 * b.step1.iterations,
+        "{}",
+        t.step1.iterations
+    );
+    assert!(t.step1.objective.total < b.step1.objective.total);
+    assert!(t.final_.objective.total < b.final_.objective.total);
+
+    s.scp.step1_tolerance = None;
+    s.scp.step1_max_iterations = Some(1);
+    let cut = plans_and_passes(&s);
+    let w = &cut.windows[0];
+    assert_eq!(
+        (w.step1.status.as_str(), w.step1.iterations),
+        ("max_iterations", 1)
+    );
+    assert_eq!(w.final_.status, "converged");
+    // the same plan read against the scenario's own limit (50) claims too little
+    let mut tampered = cut.clone();
+    tampered.scenario.scp.step1_max_iterations = None;
+    let (f, _) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
+    let r = check_plan(&tampered, &f);
+    assert!(!r.passed(), "\n{}", r.table());
+}

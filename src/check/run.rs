@@ -347,7 +347,12 @@ impl Checker<'_> {
             });
             return;
         };
-        let scp = &self.s.scp;
+        // Step 1 runs with its own limit where `scp.step1_max_iterations` is set
+        let scp = &if stage == "step1" {
+            self.s.scp.step1()
+        } else {
+            self.s.scp.clone()
+        };
         let (holds, claim) = match st.status.as_str() {
             // the loop may end on a last candidate that was feasible and better
             "converged" => (
@@ -359,7 +364,8 @@ impl Checker<'_> {
             ),
             "max_iterations" => (
                 st.iterations >= scp.max_iterations,
-                "it ran fewer than scp.max_iterations iterations",
+                "it ran fewer than its scp.max_iterations (or scp.step1_max_iterations) \
+                 iterations",
             ),
             "stalled" => (
                 !last.accepted || last.trust_region < MAX_SHRINK * scp.min_trust_region,

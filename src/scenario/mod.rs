@@ -365,6 +365,24 @@ pub struct Scp {
     /// are sometimes better and sometimes worse; at the default tolerance a window takes
     /// 1.3–1.8× longer for a median gain of 0.3–1.5 % (BENCHMARKS.md, "Fast and converged").
     pub momentum: bool,
+    /// Step 1 (P2) only: its own `tolerance` (default: `tolerance`). Step 1's tail is a slow
+    /// turn of the whole team, and at N ≤ 5 the gap of a default window to its converged run
+    /// is that turn's (BENCHMARKS.md, "Where the gap comes from, stage by stage").
+    pub step1_tolerance: Option<f64>,
+    /// Step 1 (P2) only: its own `max_iterations` (default: `max_iterations`).
+    pub step1_max_iterations: Option<usize>,
+}
+
+impl Scp {
+    /// The settings Step 1 (P2) runs with: `step1_tolerance` and `step1_max_iterations` in
+    /// place of `tolerance` and `max_iterations` where they are set.
+    pub fn step1(&self) -> Scp {
+        Scp {
+            tolerance: self.step1_tolerance.unwrap_or(self.tolerance),
+            max_iterations: self.step1_max_iterations.unwrap_or(self.max_iterations),
+            ..self.clone()
+        }
+    }
 }
 
 /// An explicit initial state (Algorithm 1, lines 4–5).
@@ -507,6 +525,8 @@ impl Default for Scp {
             min_trust_region: 1e-3,
             penalty: 1.0e3,
             momentum: false,
+            step1_tolerance: None,
+            step1_max_iterations: None,
         }
     }
 }

@@ -53,6 +53,9 @@ pub(crate) fn full_default() -> Scenario {
     s.seafloor.file = Some(EXAMPLE_FLOOR_FILE.to_string());
     s.seafloor.origin = Some(EXAMPLE_ORIGIN);
     s.seafloor.crs = Some(EXAMPLE_CRS.to_string());
+    // the converged run's settings, for Step 1 alone
+    s.scp.step1_tolerance = Some(1e-7);
+    s.scp.step1_max_iterations = Some(300);
     s
 }
 

@@ -275,6 +275,14 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              extrapolated along its last step, and its candidate kept if it lowers the merit; \
              converged runs end sooner, default-tolerance runs take longer. true or false."
         }
+        "scp.step1_tolerance" => {
+            "Step 1 (P2) only: its own tolerance (when absent: tolerance). Step 1's tail is a \
+             slow turn of the whole team; run to 1e-7 it closes most of the gap of small teams \
+             to the converged optimum, for several times the window's time. > 0."
+        }
+        "scp.step1_max_iterations" => {
+            "Step 1 (P2) only: its own max_iterations (when absent: max_iterations). ≥ 1."
+        }
         "initial" => {
             "Explicit initial state (Algorithm 1, lines 4–5). When absent, the USV starts at \
              the origin and the AUVs are drawn from `seed` within d_s of it (C1_6 at k = 0). \

@@ -455,6 +455,17 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         "must be an integer ≥ 1",
     );
     c.positive("scp.tolerance", p.tolerance, "(relative decrease)");
+    if let Some(n) = p.step1_max_iterations {
+        c.int(
+            "scp.step1_max_iterations",
+            n,
+            n >= 1,
+            "must be an integer ≥ 1",
+        );
+    }
+    if let Some(t) = p.step1_tolerance {
+        c.positive("scp.step1_tolerance", t, "(relative decrease)");
+    }
     c.positive(
         "scp.feasibility_tol",
         p.feasibility_tol,

@@ -384,13 +384,17 @@ impl<'a> TeamProblem<'a> {
         (length, speed)
     }
 
-    /// Solve the window by SCvx from `guess`, handing every SCP iteration to `observer`.
+    /// Solve the window by SCvx from `guess`, handing every SCP iteration to `observer`
+    /// (P2 with Step 1's own tolerance and iteration limit, `Scp::step1`).
     pub fn solve(
         &mut self,
         guess: Trajectory,
         observer: &mut dyn FnMut(&Iteration<SolveReport>),
     ) -> Result<ScpOutcome<Trajectory>, PlanError> {
-        let settings = self.scenario.scp.clone();
+        let settings = match self.links {
+            Some(_) => self.scenario.scp.clone(),
+            None => self.scenario.scp.step1(),
+        };
         self.solve_with(guess, settings, observer)
     }
 

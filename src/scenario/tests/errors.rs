@@ -294,6 +294,12 @@ fn out_of_range_rules() {
         ),
         ("[scp]\nmax_iterations = 0", "scp.max_iterations", 2),
         ("[scp]\ntolerance = 0", "scp.tolerance", 2),
+        ("[scp]\nstep1_tolerance = 0", "scp.step1_tolerance", 2),
+        (
+            "[scp]\nstep1_max_iterations = 0",
+            "scp.step1_max_iterations",
+            2,
+        ),
         ("[scp]\nfeasibility_tol = -1", "scp.feasibility_tol", 2),
         ("[scp]\ntrust_region = 0", "scp.trust_region", 2),
         ("[scp]\nmin_trust_region = 0", "scp.min_trust_region", 2),

@@ -107,6 +107,8 @@ fn template_uncommented() -> String {
             "# file = ",
             "# origin = ",
             "# crs = ",
+            "# step1_tolerance = ",
+            "# step1_max_iterations = ",
             "# [initial]",
             "# usv = ",
             "# auvs = ",
@@ -115,10 +117,16 @@ fn template_uncommented() -> String {
         ]
         .iter()
         .any(|p| line.starts_with(p));
-        let seafloor_key = ["# file = ", "# origin = ", "# crs = "]
-            .iter()
-            .any(|p| line.starts_with(p));
-        let l = if toml_line && (in_initial || seafloor_key) {
+        let optional_key = [
+            "# file = ",
+            "# origin = ",
+            "# crs = ",
+            "# step1_tolerance = ",
+            "# step1_max_iterations = ",
+        ]
+        .iter()
+        .any(|p| line.starts_with(p));
+        let l = if toml_line && (in_initial || optional_key) {
             line.strip_prefix("# ").unwrap_or(line)
         } else {
             line
