@@ -74,24 +74,19 @@ fn courses_unused(s: &Scenario) -> Option<String> {
 fn unconverged(windows: &[Window], s: &Scenario) -> Vec<String> {
     let mut out = Vec::new();
     for w in windows {
-        for (name, st) in [("step 1 (P2)", &w.step1), ("step 3 (P5)", &w.final_)] {
-            // the keys that set this stage's limit and tolerance
-            let step1 = std::ptr::eq(st, &w.step1);
-            let (limit, tolerance) = match (step1, &s.scp) {
-                (true, scp) => (
-                    match scp.step1_max_iterations {
-                        Some(n) => format!("scp.step1_max_iterations = {n}"),
-                        None => format!("scp.max_iterations = {}", scp.max_iterations),
-                    },
-                    match scp.step1_tolerance {
-                        Some(t) => format!("scp.step1_tolerance = {t}"),
-                        None => format!("scp.tolerance = {}", scp.tolerance),
-                    },
-                ),
-                (false, scp) => (
-                    format!("scp.max_iterations = {}", scp.max_iterations),
-                    format!("scp.tolerance = {}", scp.tolerance),
-                ),
+        for (name, st, step1) in [
+            ("step 1 (P2)", &w.step1, true),
+            ("step 3 (P5)", &w.final_, false),
+        ] {
+            // the keys that set this stage's limit and tolerance (`Scp::step1`)
+            let scp = &s.scp;
+            let limit = match scp.step1_max_iterations.filter(|_| step1) {
+                Some(n) => format!("scp.step1_max_iterations = {n}"),
+                None => format!("scp.max_iterations = {}", scp.max_iterations),
+            };
+            let tolerance = match scp.step1_tolerance.filter(|_| step1) {
+                Some(t) => format!("scp.step1_tolerance = {t}"),
+                None => format!("scp.tolerance = {}", scp.tolerance),
             };
             let why = match st.status.as_str() {
                 "converged" => continue,

@@ -721,6 +721,13 @@ fn step1_runs_to_its_own_tolerance_and_limit_and_the_check_reads_them() {
         ("max_iterations", 1)
     );
     assert_eq!(w.final_.status, "converged");
+    // the warning names the key that set the limit
+    assert!(
+        cut.warnings.iter().any(|m| m
+            .starts_with("window 0: step 1 (P2) stopped at scp.step1_max_iterations = 1 before")),
+        "{:?}",
+        cut.warnings
+    );
     // the same plan read against the scenario's own limit (50) claims too little
     let mut tampered = cut.clone();
     tampered.scenario.scp.step1_max_iterations = None;
