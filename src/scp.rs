@@ -146,6 +146,11 @@ impl Evaluation {
     pub fn merit(&self, penalty: f64) -> f64 {
         self.objective + penalty * self.violation
     }
+
+    /// Whether every constraint holds within `tol` (the settings' `feasibility_tol`).
+    pub fn feasible(&self, tol: f64) -> bool {
+        self.max_violation <= tol
+    }
 }
 
 /// Why the SCP loop stopped.
@@ -257,8 +262,8 @@ where
     // the best accepted iterate that meets every constraint: returned at the iteration limit
     // if the last accepted one (the merit tolerates small violations) does not
     // (a feasible initial reference, such as Step 1's plan for P5, counts)
-    let mut best: Option<(P::Iterate, Evaluation)> = (reference_eval.max_violation
-        <= settings.feasibility_tol)
+    let mut best: Option<(P::Iterate, Evaluation)> = reference_eval
+        .feasible(settings.feasibility_tol)
         .then(|| (reference.clone(), reference_eval));
 
     // why the loop ends if it does not converge
@@ -390,10 +395,10 @@ where
 
         if negligible {
             iterations += 1;
-            let feasible = |e: &Evaluation| e.max_violation <= settings.feasibility_tol;
-            if feasible(&reference_eval) {
+            let tol = settings.feasibility_tol;
+            if reference_eval.feasible(tol) {
                 // the last candidate, solved and judged already, if it is feasible and better
-                let better = feasible(&candidate_eval)
+                let better = candidate_eval.feasible(tol)
                     && phi_cand < phi_ref
                     && problem.ends_on_a_better_candidate();
                 record.accepted = better;
@@ -462,12 +467,12 @@ where
         }
     }
 
-    if reference_eval.max_violation > settings.feasibility_tol {
+    if !reference_eval.feasible(settings.feasibility_tol) {
         if let Some((x, e)) = best {
             (reference, reference_eval) = (x, e);
         }
     }
-    if have_feasible_reference && reference_eval.max_violation <= settings.feasibility_tol {
+    if have_feasible_reference && reference_eval.feasible(settings.feasibility_tol) {
         Ok(ScpOutcome {
             iterate: reference,
             status,
@@ -485,7 +490,7 @@ where
 /// Keep `x` as the best accepted iterate if it meets every constraint (within `tol`) and its
 /// objective is the lowest so far.
 fn keep_if_best<X: Clone>(best: &mut Option<(X, Evaluation)>, x: &X, e: Evaluation, tol: f64) {
-    if e.max_violation <= tol
+    if e.feasible(tol)
         && best
             .as_ref()
             .map_or(true, |(_, b)| e.objective < b.objective)
