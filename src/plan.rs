@@ -14,7 +14,7 @@ pub const FORMAT: &str = "shoal-plan/3";
 /// models, the initial state and every window's stages, graph, links and metrics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Plan {
-    /// Always [`FORMAT`] (`"shoal-plan/2"`); readers refuse anything else.
+    /// Always [`FORMAT`]; readers refuse anything else.
     pub format: String,
     /// Version of shoal that wrote the plan.
     pub shoal_version: String,

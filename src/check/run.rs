@@ -347,11 +347,11 @@ impl Checker<'_> {
             });
             return;
         };
+        let scp = &self.s.scp;
         // Step 1 runs with its own limit where `scp.step1_max_iterations` is set
-        let scp = &if stage == "step1" {
-            self.s.scp.step1()
-        } else {
-            self.s.scp.clone()
+        let max_iterations = match stage {
+            "step1" => scp.step1().max_iterations,
+            _ => scp.max_iterations,
         };
         let (holds, claim) = match st.status.as_str() {
             // the loop may end on a last candidate that was feasible and better
@@ -363,7 +363,7 @@ impl Checker<'_> {
                  broke a constraint",
             ),
             "max_iterations" => (
-                st.iterations >= scp.max_iterations,
+                st.iterations >= max_iterations,
                 "it ran fewer than its scp.max_iterations (or scp.step1_max_iterations) \
                  iterations",
             ),

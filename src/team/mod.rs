@@ -403,9 +403,10 @@ impl<'a> TeamProblem<'a> {
     /// convex solver is dropped after it, so that the next solve is the one a fresh problem
     /// would make.
     pub fn first_merit(&mut self, guess: Trajectory) -> Result<f64, PlanError> {
+        // one iteration of Step 1's own SCP (its tolerance sets how exactly the model is solved)
         let settings = crate::scenario::Scp {
             max_iterations: 1,
-            ..self.scenario.scp.clone()
+            ..self.scenario.scp.step1()
         };
         let out = self.solve_with(guess, settings.clone(), &mut |_| {});
         // the next solve starts as on a fresh problem: the same plan as from that guess alone
