@@ -14,7 +14,6 @@ mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use shoal::scp::ScpProblem;
-use shoal::team::LinkSet;
 use shoal::team::TeamProblem;
 use shoal::trajectory::Trajectory;
 
@@ -58,10 +57,8 @@ fn model(c: &mut Criterion) {
         let b = common::setup(n);
         let s = &b.scenario;
         let penalty = s.scp.penalty;
-        let new_problem =
-            || TeamProblem::new(s, &b.floor, &b.keep_out, b.auv, b.usv, b.start.clone());
 
-        let mut p2 = new_problem();
+        let mut p2 = b.problem();
         let guess = p2.initial_guess(None);
         let name = format!("p2/N={n},K=20");
         measure(
@@ -73,19 +70,8 @@ fn model(c: &mut Criterion) {
             penalty,
         );
 
-        let step1 = shoal::step1::solve(&mut p2, None, &mut |_| {})
-            .expect("P2")
-            .0
-            .iterate;
-        let graph = shoal::step2::solve(
-            &step1,
-            &b.floor,
-            s.acoustic.resolution,
-            s.acoustic.sonar_range,
-            s.acoustic.graph,
-        );
-        let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
-        let mut p5 = new_problem().with_links(links);
+        let (step1, links) = common::step1_and_links(&b, &mut p2);
+        let mut p5 = b.problem().with_links(links);
         let radius = s.acoustic.band_tolerance.min(s.scp.trust_region);
         let name = format!("p5/N={n},K=20");
         measure(&mut group, &name, &mut p5, &step1, radius, penalty);

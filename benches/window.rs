@@ -7,8 +7,6 @@ mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 
-use shoal::team::TeamProblem;
-
 fn window(c: &mut Criterion) {
     let mut group = c.benchmark_group("window");
     group.sample_size(10);
@@ -17,8 +15,7 @@ fn window(c: &mut Criterion) {
         let s = &b.scenario;
         group.bench_function(format!("step1/N={n},K=20"), |bench| {
             bench.iter(|| {
-                let mut p2 =
-                    TeamProblem::new(s, &b.floor, &b.keep_out, b.auv, b.usv, b.start.clone());
+                let mut p2 = b.problem();
                 shoal::step1::solve(&mut p2, None, &mut |_| {}).expect("P2")
             })
         });

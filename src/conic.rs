@@ -25,6 +25,8 @@ pub enum ConicError {
     Setup(String),
     #[error("a data update changed the problem's sparsity pattern: {0}")]
     Update(String),
+    #[error("could not write the model to {path}: {reason}")]
+    Save { path: String, reason: String },
 }
 
 /// Triplets (row, col, value) in insertion order.
@@ -446,6 +448,24 @@ impl ConicSolver {
         fill(&self.p.matrix, &self.a.matrix, &self.cones)
     }
 
+    /// Write the model of the last update (P, q, A, b, cones and the settings, in the solver's
+    /// units x̃ = x / scale) as Clarabel's JSON problem file, whole or not at all: what any
+    /// Clarabel interface reads back (`clarabel.load_from_file` in Python), so that other solvers
+    /// can be measured on exactly the models the SCP solves (BENCHMARKS.md, "Other solvers on
+    /// the same models").
+    pub fn save_to_file(&self, path: &std::path::Path) -> Result<(), ConicError> {
+        use clarabel::solver::SolverJSONReadWrite;
+        let fail = |e: std::io::Error| ConicError::Save {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        };
+        let mut tmp = crate::atomic_file::temp_for(path).map_err(fail)?;
+        self.solver.save_to_file(tmp.as_file_mut()).map_err(fail)?;
+        tmp.as_file().sync_all().map_err(fail)?;
+        tmp.persist(path).map_err(|e| fail(e.error))?;
+        Ok(())
+    }
+
     /// New values for P (triplet order), q, A (triplet order) and b. Patterns must not change.
     pub fn update(
         &mut self,
@@ -570,14 +590,21 @@ mod tests {
     /// min (x−1)² + (y−2)² s.t. ‖(x, y)‖ ≤ r: the projection of (1, 2) onto the disc of radius
     /// r, (1, 2)·r/√5, for r = 1 and, after a data update, r = 2; solved with the variables
     /// scaled by `scale` when given.
-    fn projection_survives_an_update(scale: Option<Vec<f64>>) {
+    /// The projection of (1, 2) onto the disc of radius b[0]: min ‖x‖² − 2x − 4y s.t.
+    /// ‖(x, y)‖ ≤ b[0], as (P, A, q, cones).
+    fn projection() -> (Triplets, Triplets, [f64; 2], [SupportedConeT<f64>; 1]) {
         let mut pt = Triplets::default();
         pt.push(0, 0, 2.0);
         pt.push(1, 1, 2.0);
         let mut at = Triplets::default();
         at.push(1, 0, -1.0);
         at.push(2, 1, -1.0);
-        let (q, b, cones) = ([-2.0, -4.0], [1.0, 0.0, 0.0], [SecondOrderConeT(3)]);
+        (pt, at, [-2.0, -4.0], [SecondOrderConeT(3)])
+    }
+
+    fn projection_survives_an_update(scale: Option<Vec<f64>>) {
+        let (pt, at, q, cones) = projection();
+        let b = [1.0, 0.0, 0.0];
         let (p, a) = (Pattern::new(2, 2, &pt), Pattern::new(3, 2, &at));
         let mut s = match scale {
             None => ConicSolver::new(p, &q, a, &b, &cones),
@@ -600,6 +627,47 @@ mod tests {
         s.update(&pt.vals, &q, &at.vals, &[2.0, 0.0, 0.0]).unwrap();
         let r = s.solve();
         assert!((r.x[0] - 2.0 / n).abs() < tol && (r.x[1] - 4.0 / n).abs() < tol);
+    }
+
+    /// A saved model is the model last updated, in the solver's units: Clarabel reads it back
+    /// and solves it to the same point (x̃ = x / scale); a file that cannot be written is an
+    /// error naming it, and leaves nothing behind.
+    #[test]
+    fn a_saved_model_reloads_and_solves_to_the_same_point() {
+        use clarabel::solver::SolverJSONReadWrite;
+        let (pt, at, q, cones) = projection();
+        let (p, a) = (Pattern::new(2, 2, &pt), Pattern::new(3, 2, &at));
+        let scale = vec![4.0, 0.5];
+        let mut s =
+            ConicSolver::with_scale(p, &pt, &q, a, &at, &[1.0, 0.0, 0.0], &cones, scale.clone())
+                .unwrap();
+        // the model saved is the one of the last update (radius 2), not the first
+        s.update(&pt.vals, &q, &at.vals, &[2.0, 0.0, 0.0]).unwrap();
+        let r = s.solve();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("model.json");
+        s.save_to_file(&path).unwrap();
+        let mut file = std::fs::File::open(&path).unwrap();
+        let mut again = DefaultSolver::<f64>::load_from_file(&mut file, Some(settings())).unwrap();
+        again.solve();
+        assert_eq!(
+            SolverStatus::from(again.solution.status),
+            SolverStatus::Solved
+        );
+        let tol = 100.0 * GAP_TOL;
+        for i in 0..2 {
+            let x = again.solution.x[i] * scale[i];
+            assert!((x - r.x[i]).abs() < tol, "x[{i}]: {x} against {}", r.x[i]);
+        }
+
+        let missing = dir.path().join("no such directory").join("model.json");
+        let e = s.save_to_file(&missing).unwrap_err();
+        assert!(
+            e.to_string().contains("no such directory/model.json"),
+            "{e}"
+        );
+        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert_eq!(left.len(), 1, "only model.json");
     }
 
     #[test]

@@ -7,7 +7,9 @@
 use shoal::mission::{initial_state, scenario_floor, FloorSource};
 use shoal::scenario::Scenario;
 use shoal::seafloor::Seafloor;
+use shoal::team::{LinkSet, TeamProblem};
 use shoal::trajectory::Start;
+use shoal::trajectory::Trajectory;
 use shoal::vehicle::{AuvModel, UsvModel};
 use std::path::Path;
 
@@ -19,6 +21,20 @@ pub struct Setup {
     pub auv: AuvModel,
     pub usv: UsvModel,
     pub start: Start,
+}
+
+impl Setup {
+    /// A window problem of this set-up (P2's until given links).
+    pub fn problem(&self) -> TeamProblem<'_> {
+        TeamProblem::new(
+            &self.scenario,
+            &self.floor,
+            &self.keep_out,
+            self.auv,
+            self.usv,
+            self.start.clone(),
+        )
+    }
 }
 
 /// The default scenario with `n` AUVs (K = 20, δ = 100 s, d_s = 150 m, seed 1).
@@ -46,4 +62,23 @@ pub fn setup(n: usize) -> Setup {
         usv,
         start,
     }
+}
+
+/// Step 1's plan (P2's SCP run on `p2`) and Step 2's chain about it, as P5's links: what
+/// Step 3's first model is built from.
+pub fn step1_and_links(b: &Setup, p2: &mut TeamProblem) -> (Trajectory, LinkSet) {
+    let s = &b.scenario;
+    let step1 = shoal::step1::solve(p2, None, &mut |_| {})
+        .expect("P2")
+        .0
+        .iterate;
+    let graph = shoal::step2::solve(
+        &step1,
+        &b.floor,
+        s.acoustic.resolution,
+        s.acoustic.sonar_range,
+        s.acoustic.graph,
+    );
+    let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
+    (step1, links)
 }

@@ -217,6 +217,15 @@ impl<'a> TeamProblem<'a> {
         self.solver.as_ref().map(ConicSolver::fill)
     }
 
+    /// Write the last convex model solved as Clarabel's JSON problem file
+    /// ([`ConicSolver::save_to_file`]; None before the first solve builds the solver).
+    pub fn save_model(
+        &self,
+        path: &std::path::Path,
+    ) -> Option<Result<(), crate::conic::ConicError>> {
+        self.solver.as_ref().map(|s| s.save_to_file(path))
+    }
+
     /// Where each variable sits in the solver's vector.
     pub fn layout(&self) -> Layout {
         self.layout

@@ -1,0 +1,53 @@
+//! Write the convex models of `cargo bench --bench model` as Clarabel JSON problem files, so
+//! that other solvers can be measured on exactly the models the SCP solves
+//! (`scripts/other_solvers.py`; BENCHMARKS.md, "Other solvers on the same models").
+//!
+//! For N = 5 and N = 20 on the default scenario (K = 20, seed 1), into DIR:
+//! - `p2_N{n}.json`: P2 (Step 1) about the first guess;
+//! - `p5_N{n}_a.json`: P5 (Step 3) about Step 1's plan, with Step 2's chain;
+//! - `p5_N{n}_b.json`: the next P5 model, about the first one's candidate (same radius and
+//!   penalty): two models of one SCP in a row, for a warm start from the first's solution.
+//!
+//! Run: cargo run --release --example export_models -- DIR
+
+#[path = "../benches/common/mod.rs"]
+mod common;
+
+use shoal::scp::ScpProblem;
+use shoal::team::TeamProblem;
+use std::path::{Path, PathBuf};
+
+fn save(problem: &TeamProblem, path: PathBuf) {
+    problem
+        .save_model(&path)
+        .expect("a model was solved")
+        .unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("wrote {}", path.display());
+}
+
+fn main() {
+    let dir = std::env::args()
+        .nth(1)
+        .expect("usage: export_models DIR (an existing directory)");
+    let dir = Path::new(&dir);
+    for n in [5usize, 20] {
+        let b = common::setup(n);
+        let s = &b.scenario;
+        let penalty = s.scp.penalty;
+
+        let mut p2 = b.problem();
+        let guess = p2.initial_guess(None);
+        p2.solve_model(&guess, s.scp.trust_region, penalty)
+            .expect("P2 model");
+        save(&p2, dir.join(format!("p2_N{n}.json")));
+
+        let (step1, links) = common::step1_and_links(&b, &mut p2);
+        let mut p5 = b.problem().with_links(links);
+        let radius = s.acoustic.band_tolerance.min(s.scp.trust_region);
+        let (candidate, _, _) = p5.solve_model(&step1, radius, penalty).expect("P5 model");
+        save(&p5, dir.join(format!("p5_N{n}_a.json")));
+        p5.solve_model(&candidate, radius, penalty)
+            .expect("P5 model");
+        save(&p5, dir.join(format!("p5_N{n}_b.json")));
+    }
+}
