@@ -330,10 +330,14 @@ pub struct ObjectiveTerms {
     /// their bands.
     #[serde(default)]
     pub band: f64,
+    /// The lanes term (Step 3; ours): Σ_k Σ metres by which lane neighbours' cross-track gaps
+    /// fall short of the swath (0 without it; absent in plans before it).
+    #[serde(default)]
+    pub lanes: f64,
     /// (w1·energy + w2·(height or depth))/N − w8·usv (away) or + w8_2·usv (destination), with
     /// /N only for `weights.scaling = "per_auv"` (the default), w8 as `Scenario::w8` scales it
     /// (`weights.w8_scaling`); in Step 3
-    /// also − w5·spread(/N) + w3·(A2U band) + w4·(A2A band).
+    /// also − w5·spread(/N) + w3·(A2U band) + w4·(A2A band) + w_lanes·lanes(/N).
     pub total: f64,
 }
 

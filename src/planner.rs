@@ -209,6 +209,7 @@ fn stage_record(
             usv: terms.usv,
             spread: terms.spread,
             band: terms.band_a2u + terms.band_a2a,
+            lanes: terms.lanes,
             total: problem.objective(&terms),
         },
         max_violation: out.evaluation.max_violation,
@@ -281,7 +282,9 @@ fn run(
         // Step 3 (P5) and line of sight, lines 17–22
         let clock = Instant::now();
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
-        let p5 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone()).with_links(links);
+        let p5 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone())
+            .with_links(links)
+            .with_lanes(&out1.iterate);
         let mut p5 = p5.with_track(&track).with_terminal(more);
         let mut trace = Vec::new();
         let out3 = step3::solve(&mut p5, &out1.iterate, &mut |it| {

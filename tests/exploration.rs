@@ -97,8 +97,9 @@ fn the_paper_window_weighs_of1_8_per_square_metre() {
 }
 
 /// A team whose energy outweighs OF1_8 barely moves, and the plan says so, naming the weights
-/// to change (here the paper's sums and OF1_8 per m², with w1 = 10⁷ per (m/s²)²; with 10⁶ the
-/// lanes chain's spread reward alone moves the USV 207 m, past the warning's 10 %).
+/// to change (here the paper's P5 with its sums and OF1_8 per m², with w1 = 10⁷ per (m/s²)²;
+/// with 10⁶ the lanes chain's spread reward alone moves the USV 207 m, past the warning's
+/// 10 %, and so does the lanes term, which spreads the team across the track).
 #[test]
 fn a_team_that_barely_moves_is_told_which_weight_to_change() {
     let mut s = team(3);
@@ -106,6 +107,7 @@ fn a_team_that_barely_moves_is_told_which_weight_to_change() {
     s.weights.scaling = WeightScaling::Sum;
     s.weights.w8_scaling = W8Scaling::None;
     s.weights.w1 = 1e7;
+    s.weights.w_lanes = 0.0;
     let (p, _) = plan(&s);
     assert!(usv_moved(&p, 0) < 0.1 * 10.0 * 100.0 * 1.5);
     let w = p.warnings.join("\n");
@@ -146,5 +148,61 @@ fn regression_a_long_mission_heads_for_new_ground_and_names_the_grid_edge() {
         w.contains("window 1: the grid's edge stops the team")
             && w.contains("east edge (x = 4000 m)"),
         "{w}"
+    );
+}
+
+/// Each AUV's mean cross-track offset from the USV over steps 5..=K of window 0 (positive to
+/// the left of the USV's course from start to end), sorted.
+fn cross_track_offsets(p: &Plan) -> Vec<f64> {
+    let w = &p.windows[0].final_;
+    let u = &w.usv.position;
+    let (a, b) = (u[0], u[u.len() - 1]);
+    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+    let left = [-(b[1] - a[1]) / len, (b[0] - a[0]) / len];
+    let mut offsets: Vec<f64> = w
+        .auvs
+        .iter()
+        .map(|auv| {
+            let steps = 5..auv.position.len();
+            let n = steps.len() as f64;
+            steps
+                .map(|k| {
+                    let (q, c) = (auv.position[k], u[k]);
+                    left[0] * (q[0] - c[0]) + left[1] * (q[1] - c[1])
+                })
+                .sum::<f64>()
+                / n
+        })
+        .collect();
+    offsets.sort_by(f64::total_cmp);
+    offsets
+}
+
+/// Regression (seventeenth session): with OF1_5 alone (a sum of squared distances) a team of 15
+/// gathered at the corridor's two edges: 7 of 14 neighbouring AUVs (seed 1) within 25 m of each
+/// other across the track, sweeping the same strip, and gaps of up to 141 m unswept between
+/// others (1.453 km²). The lanes term prices a lane neighbour closer than a swath across the
+/// track: the team spreads into lanes and sweeps more (2.066 km²).
+#[test]
+fn regression_fifteen_auvs_sweep_lanes_rather_than_the_corridor_edges() {
+    let mut s = team(15);
+    let (lanes, _) = plan(&s);
+    s.weights.w_lanes = 0.0;
+    let (edges, _) = plan(&s);
+    let close = |p: &Plan| {
+        cross_track_offsets(p)
+            .windows(2)
+            .filter(|w| w[1] - w[0] < 0.5 * s.auv.swath_width)
+            .count()
+    };
+    assert!(close(&edges) >= 5, "{:?}", cross_track_offsets(&edges));
+    assert!(close(&lanes) <= 1, "{:?}", cross_track_offsets(&lanes));
+    let (a_lanes, a_edges) = (
+        lanes.metrics.explored_area_km2,
+        edges.metrics.explored_area_km2,
+    );
+    assert!(
+        a_lanes > 1.25 * a_edges,
+        "with lanes {a_lanes} km², without {a_edges} km²"
     );
 }

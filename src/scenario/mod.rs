@@ -234,7 +234,8 @@ pub enum DepthObjective {
     Depth,
 }
 
-/// Weights w1..w8 of the objective OF1 (problem P1) and w8_2 of OF1_8_2; all ≥ 0.
+/// Weights w1..w8 of the objective OF1 (problem P1), w8_2 of OF1_8_2 and w_lanes of the lanes
+/// term (ours); all ≥ 0.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Weights {
@@ -259,6 +260,10 @@ pub struct Weights {
     pub w8: f64,
     /// w8_2 · OF1_8_2, USV squared distance to the destination, per m².
     pub w8_2: f64,
+    /// w_lanes · the lanes term (Step 3; ours, not in the paper): per metre by which a lane
+    /// neighbour's cross-track gap falls short of the swath, per step (per AUV: see `scaling`);
+    /// 0 turns it off.
+    pub w_lanes: f64,
     /// Whether w1, w2 and w5 weigh the team's sums per AUV (default) or as the paper's sums.
     pub scaling: WeightScaling,
     /// Whether w8 weighs OF1_8 against the energy a distance costs in this window as in the
@@ -507,6 +512,9 @@ impl Default for Weights {
             w7: 0.0,
             w8: 1.0e-3,
             w8_2: 1.0e-3,
+            // per metre of lane shortfall, per step, per AUV: of 0, 16, 32, 64 and 128, 32 gave
+            // the most sea floor at N = 5–20 (docs/method.md, "The lanes term")
+            w_lanes: 32.0,
             scaling: WeightScaling::PerAuv,
             w8_scaling: W8Scaling::Energy,
         }

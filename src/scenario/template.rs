@@ -179,6 +179,13 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "w8_2 · OF1_8_2: squared distance of the USV to usv.destination, per m². Used when \
              usv.objective = \"destination\"."
         }
+        "weights.w_lanes" => {
+            "w_lanes · the lanes term (Step 3; ours, not in the paper): per metre by which an \
+             AUV's cross-track gap to its chain neighbour falls short of auv.swath_width, per step \
+             (per AUV: see scaling), so that the team sweeps lanes a swath apart instead of \
+             gathering at the corridor's edges. With acoustic.graph = \"lanes\" only; 0 turns it \
+             off."
+        }
         "weights.scaling" => {
             "\"per_auv\" (ours, default): w1 and w2 weigh OF1_1 and OF1_2 averaged over the N \
              AUVs, w5 weighs OF1_5 per AUV, so the team's terms balance the USV's OF1_8 alike \

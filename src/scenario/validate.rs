@@ -306,6 +306,7 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         ("weights.w7", w.w7, "w7 of OF1_7"),
         ("weights.w8", w.w8, "w8 of OF1_8"),
         ("weights.w8_2", w.w8_2, "w8_2 of OF1_8_2"),
+        ("weights.w_lanes", w.w_lanes, "w_lanes of the lanes term"),
     ] {
         c.non_negative(key, x, &format!("({sym})"));
     }

@@ -4,19 +4,20 @@
 //! serves every later one (only values change).
 //!
 //! - objective: OF2's model (`objective`), the slacks' prices (`floor`, `heading`, `keep_out`,
-//!   `links`) and the linearised OF1_5 (`spread`), the last two P5's only;
+//!   `links`), the linearised OF1_5 (`spread`) and the lanes term (`lanes`), the last three
+//!   P5's only;
 //! - zero cone: the dynamics C1_1 (`dynamics`);
 //! - nonnegative cone: C1_4 and the grid bounds (`bounds`), the linearised floor clearance C2_2
 //!   (`floor`), the USV's and the links' keep-out rows (`keep_out`, over a grid with obstacles),
 //!   C1_14's Turn rows (`heading`), the bands' lower ends (`links`), the bridges' line of sight
-//!   (`bridges`), slacks ν ≥ 0;
+//!   (`bridges`), the lanes' shortfalls (`lanes`), slacks ν ≥ 0;
 //! - second-order cones: the speed limits (`speed`), C1_5/C1_6 (`ranges`), the trust region
 //!   and the AUVs' squared steps τ (`trust`), C1_14's slow alternatives (`heading`), the bands' upper ends (`links`), the
 //!   bridges' ranges (`bridges`).
 
 use super::model::Assembly;
 use super::{bounds, bridges, dynamics, floor, heading, keep_out, links, objective, ranges};
-use super::{speed, spread, trust, TeamProblem};
+use super::{lanes, speed, spread, trust, TeamProblem};
 use crate::error::PlanError;
 use crate::trajectory::Trajectory;
 use clarabel::solver::SupportedConeT::NonnegativeConeT;
@@ -75,6 +76,7 @@ pub(super) fn assemble(
     }
     links::lower_rows(p, r, &mut m); // Step 3 only
     bridges::rows(p, r, &mut m)?; // Step 3 only
+    lanes::rows(p, &mut m); // Step 3 only, with its lanes
     for n in 0..nn {
         for k in 1..=kk {
             m.nonnegative(l.floor_slack(n, k));

@@ -8,9 +8,10 @@
 //! Step k = 0 is the window's fixed start and is not a variable. P5 (Step 3) appends, per step
 //! k = 1..=K and planned link l, the slacks of its band: σ (above the upper end, C5_2/C5_3's
 //! "< d_s") and ν (below the lower end, "> d_s − d_t"). Over a grid with obstacles come next
-//! the slacks ν_u[1..=K] of the USV's keep-out rows; last, per planned link l and step k, the
+//! the slacks ν_u[1..=K] of the USV's keep-out rows; then, per planned link l and step k, the
 //! slack ν_los[l][k] of its line-of-sight rows (P5 only, over every grid); after them, per
-//! bridge b (P5's `bridges`), the slacks σ_b of its range and ν_b of its line of sight.
+//! bridge b (P5's `bridges`), the slacks σ_b of its range and ν_b of its line of sight; last,
+//! per lane pair i and step k, the shortfall h[i][k] of P5's lanes term (`lanes`).
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -24,13 +25,24 @@ pub struct Layout {
     pub obstacles: bool,
     /// Bridges of the window (P5's `bridges`; 0 for P2), over all its steps.
     pub bridges: usize,
+    /// Lane pairs of P5's lanes term (`lanes`; N − 1 with it, else 0).
+    pub lane_pairs: usize,
 }
 
 impl Layout {
     const AUV_BLOCK: usize = 13;
 
     pub fn variables(&self) -> usize {
+        self.lane_base() + self.lane_pairs * self.k
+    }
+    fn lane_base(&self) -> usize {
         self.bridge_base() + 2 * self.bridges
+    }
+    /// h\[i\]\[k\]: how far lane pair i's cross-track gap falls short of the swath at step k
+    /// (`lanes`), k = 1..=K.
+    pub fn lane_shortfall(&self, i: usize, k: usize) -> usize {
+        debug_assert!(i < self.lane_pairs && k >= 1 && k <= self.k);
+        self.lane_base() + i * self.k + (k - 1)
     }
     fn bridge_base(&self) -> usize {
         self.los_base() + self.k * self.links
@@ -45,8 +57,8 @@ impl Layout {
         4 * self.k + Self::AUV_BLOCK * self.k * self.n
     }
     /// The scale of every variable for the solver (x = scale ∘ x̃, `ConicSolver::with_scale`):
-    /// `position` (metres) for positions and the squared steps τ (metres, of the order of a
-    /// step), 1 for the rest (velocities and inputs are of order 10⁻² to 1 in SI
+    /// `position` (metres) for positions, the squared steps τ (metres, of the order of a
+    /// step) and the lanes' shortfalls (metres), 1 for the rest (velocities and inputs are of order 10⁻² to 1 in SI
     /// units already, as are the slacks).
     ///
     /// Unscaled, positions of 10²–10³ m sit beside inputs of 10⁻² m/s², and Clarabel's
@@ -60,6 +72,9 @@ impl Layout {
                 d[self.auv_p(n, k)..self.auv_p(n, k) + 3].fill(position);
                 d[self.end_square(n, k)] = position;
                 d[self.start_square(n, k)] = position;
+            }
+            for i in 0..self.lane_pairs {
+                d[self.lane_shortfall(i, k)] = position;
             }
         }
         d
@@ -152,7 +167,7 @@ impl Layout {
 mod tests {
     use super::*;
 
-    /// Positions and the squared steps, and only those, are scaled.
+    /// Positions, the squared steps and the lanes' shortfalls, and only those, are scaled.
     #[test]
     fn scale_marks_the_positions() {
         let l = Layout {
@@ -161,6 +176,7 @@ mod tests {
             links: 2,
             obstacles: true,
             bridges: 1,
+            lane_pairs: 1,
         };
         let d = l.scale(150.0);
         let mut positions = vec![false; l.variables()];
@@ -172,6 +188,7 @@ mod tests {
                 positions[l.end_square(n, k)] = true;
                 positions[l.start_square(n, k)] = true;
             }
+            positions[l.lane_shortfall(0, k)] = true;
         }
         for (i, &p) in positions.iter().enumerate() {
             assert_eq!(d[i], if p { 150.0 } else { 1.0 }, "variable {i}");
@@ -190,12 +207,15 @@ mod tests {
             (20, 5, 5, true, 3),
             (7, 12, 12, false, 0),
         ] {
+            // the lanes' shortfalls with a chain of two or more (links = N in P5)
+            let lane_pairs = if links > 0 { n - 1 } else { 0 };
             let l = Layout {
                 k,
                 n,
                 links,
                 obstacles,
                 bridges,
+                lane_pairs,
             };
             let mut seen = vec![0u8; l.variables()];
             let mut mark = |i: usize, w: usize| (i..i + w).for_each(|j| seen[j] += 1);
@@ -235,6 +255,11 @@ mod tests {
             for b in 0..bridges {
                 mark(l.bridge_slack(b), 1);
                 mark(l.bridge_los_slack(b), 1);
+            }
+            for i in 0..lane_pairs {
+                for s in 1..=k {
+                    mark(l.lane_shortfall(i, s), 1);
+                }
             }
             assert!(
                 seen.iter().all(|&c| c == 1),

@@ -37,6 +37,7 @@ mod floor;
 mod guess;
 mod heading;
 mod keep_out;
+mod lanes;
 mod layout;
 mod links;
 mod model;
@@ -46,6 +47,7 @@ mod speed;
 mod spread;
 mod trust;
 
+pub use lanes::Lanes;
 pub use layout::Layout;
 pub use links::{
     describe, ends, length, outside, priced_band, priced_outside, LinkSet, ABOVE_FACTOR,
@@ -54,7 +56,7 @@ pub use objective::Terms;
 
 use crate::conic::{ConicSolver, Pattern, SolveReport};
 use crate::error::{PlanError, Step};
-use crate::scenario::{AwayFrom, Scenario, UsvObjective};
+use crate::scenario::{A2aGraph, AwayFrom, Scenario, UsvObjective};
 use crate::scp::{self, Evaluation, Iteration, ScpOutcome, ScpProblem};
 use crate::seafloor::Seafloor;
 use crate::trajectory::{Start, Trajectory};
@@ -84,6 +86,8 @@ pub struct TeamProblem<'a> {
     links: Option<LinkSet>,
     /// P5's bridges (`bridges`): empty for P2.
     bridges: Vec<bridges::Bridge>,
+    /// P5's lanes term (`lanes`): None for P2, with `weights.w_lanes = 0` or another graph.
+    lanes: Option<Lanes>,
     /// Per step and planned link, the least length the start allows (`bridges::least_lengths`).
     least: Vec<Vec<f64>>,
     /// The terminal margin (`bounds`): a window that another follows.
@@ -119,6 +123,7 @@ impl<'a> TeamProblem<'a> {
             links: 0,
             obstacles: floor.has_obstacles(),
             bridges: 0,
+            lane_pairs: 0,
         };
         TeamProblem {
             scenario,
@@ -132,6 +137,7 @@ impl<'a> TeamProblem<'a> {
             heading: HeadingRule::of(scenario),
             links: None,
             bridges: Vec::new(),
+            lanes: None,
             least: Vec::new(),
             terminal: false,
             forced: vec![Vec::new(); layout.n * layout.k],
@@ -190,6 +196,21 @@ impl<'a> TeamProblem<'a> {
         self.least = bridges::least_lengths(self.scenario, &self.start, &links);
         self.layout.bridges = self.bridges.len();
         self.links = Some(links);
+        self.solver = None;
+        self
+    }
+
+    /// P5 with the lanes term (`lanes`) of its chain across Step 1's plan `step1`, when
+    /// `weights.w_lanes` is positive and the chain is one per window (`acoustic.graph =
+    /// "lanes"`, the default); otherwise (and for P2) unchanged. Call after `with_links`.
+    pub fn with_lanes(mut self, step1: &Trajectory) -> TeamProblem<'a> {
+        let s = self.scenario;
+        let wanted = s.weights.w_lanes > 0.0 && s.acoustic.graph == A2aGraph::Lanes;
+        self.lanes = match &self.links {
+            Some(links) if wanted => Lanes::of(links, step1),
+            _ => None,
+        };
+        self.layout.lane_pairs = self.lanes.as_ref().map_or(0, |l| l.order.len() - 1);
         self.solver = None;
         self
     }

@@ -41,6 +41,9 @@ pub struct Terms {
     pub band_a2u: f64,
     /// OF1_4 as C5_3's slack: Σ_k Σ metres by which A2A edges are outside their bands.
     pub band_a2a: f64,
+    /// The lanes term (ours, `lanes`): Σ_k Σ metres by which lane neighbours' cross-track gaps
+    /// fall short of the swath (0 without it).
+    pub lanes: f64,
 }
 
 /// Unweighted objective terms of `t` (OF1_1, OF1_2, OF1_8 or OF1_8_2, and P5's).
@@ -70,6 +73,10 @@ pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
         }
         None => (0.0, 0.0, 0.0),
     };
+    let lanes = p
+        .lanes
+        .as_ref()
+        .map_or(0.0, |l| l.value(t, p.scenario.auv.swath_width));
     let pk = t.usv_p[p.layout.k];
     let s = p.scenario;
     let usv = match s.usv.objective {
@@ -87,12 +94,13 @@ pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
         spread,
         band_a2u,
         band_a2a,
+        lanes,
     }
 }
 
-/// The weighted terms of J: w1·OF1_1, w2·OF1_2, the USV term, −w5·OF1_5, w3·OF1_3, w4·OF1_4
-/// (the last three zero without links).
-pub(super) fn weighted(p: &TeamProblem, t: &Terms) -> [f64; 6] {
+/// The weighted terms of J: w1·OF1_1, w2·OF1_2, the USV term, −w5·OF1_5, w3·OF1_3, w4·OF1_4,
+/// w_lanes·lanes (the last four zero without links).
+pub(super) fn weighted(p: &TeamProblem, t: &Terms) -> [f64; 7] {
     let w = &p.scenario.weights;
     let usv = match p.scenario.usv.objective {
         UsvObjective::Away => -p.scenario.w8() * t.usv, // weights.w8_scaling
@@ -110,6 +118,7 @@ pub(super) fn weighted(p: &TeamProblem, t: &Terms) -> [f64; 6] {
         -w.w5 * per_auv * t.spread,
         w.w3 * t.band_a2u,
         w.w4 * t.band_a2a,
+        w.w_lanes * per_auv * t.lanes,
     ]
 }
 

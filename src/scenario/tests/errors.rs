@@ -215,6 +215,7 @@ fn out_of_range_rules() {
         ("[weights]\nw1 = -1", "weights.w1", 2),
         ("[weights]\nw5 = -1e-9", "weights.w5", 2),
         ("[weights]\nw8_2 = -1", "weights.w8_2", 2),
+        ("[weights]\nw_lanes = -1", "weights.w_lanes", 2),
         ("[seafloor]\nfile = \"\"", "seafloor.file", 2),
         (
             "[seafloor.synthetic]\nsize = [0, 100]",

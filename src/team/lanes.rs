@@ -1,0 +1,187 @@
+//! The lanes term of P5 (Step 3; ours, not in the paper): how far each AUV's cross-track gap to
+//! its neighbour in the window's chain falls short of the swath width, priced as
+//! w_lanes·Σ_k Σ_i max(0, b − n̂ᵀ(P_{o(i+1)}\[k\] − P_{o(i)}\[k\])), with o the chain's order (its
+//! lanes, `acoustic.graph = "lanes"`), n̂ the window's cross-track direction and b
+//! `auv.swath_width`. Zero when every lane neighbour is a swath or more across the track.
+//!
+//! Why: OF1_5, a sum of squared distances, is largest with the team in two clusters at the
+//! corridor's edges, where swaths overlap while strips between them go unswept (BENCHMARKS.md,
+//! "The team's cross-track layout below the corridor's cap"). The gap to a lane neighbour
+//! adds sea floor only up to one swath, so this term asks for lanes a swath apart and no more.
+//!
+//! A maximum of affine functions is convex, so the term is exact in the convex model: one
+//! variable h ≥ 0, h ≥ b − n̂ᵀ(P_{o(i+1)} − P_{o(i)}) per pair and step, priced w_lanes. n̂ and o
+//! are fixed for the window (from Step 1's plan), so the true objective is one function of the
+//! positions for the whole SCP.
+
+use super::links::LinkSet;
+use super::model::Assembly;
+use super::TeamProblem;
+use crate::trajectory::Trajectory;
+
+/// The window's lanes: the chain's order across the track and the cross-track direction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lanes {
+    /// The AUVs in chain order, so that the cross-track offset grows along it.
+    pub order: Vec<usize>,
+    /// n̂, the unit horizontal direction across the track (left of the USV's course, or right,
+    /// whichever makes Step 1's offsets grow along `order`).
+    pub cross: [f64; 2],
+}
+
+impl Lanes {
+    /// The lanes of a window from its chain (the A2A path at k = 1: with `acoustic.graph =
+    /// "lanes"` the same at every step) and Step 1's plan `step1`: n̂ is normal to the USV's
+    /// course from P_USV\[0\] to P_USV\[K\], oriented so that the last AUV of the chain is, on
+    /// average over k = 1..=K, farther along n̂ than the first. None without a chain of at least
+    /// two AUVs, or when the USV moves less than 1 m (no course to be across).
+    pub fn of(links: &LinkSet, step1: &Trajectory) -> Option<Lanes> {
+        let n = step1.auv_p.len();
+        if n < 2 || links.links.len() < 2 {
+            return None;
+        }
+        let mut adjacent = vec![Vec::new(); n];
+        for l in &links.links[1] {
+            if let Some(b) = l.b {
+                adjacent[l.a].push(b);
+                adjacent[b].push(l.a);
+            }
+        }
+        let first = (0..n).find(|&i| adjacent[i].len() == 1)?;
+        let mut order = vec![first];
+        let (mut previous, mut current) = (usize::MAX, first);
+        while order.len() < n {
+            let next = *adjacent[current].iter().find(|&&x| x != previous)?;
+            order.push(next);
+            (previous, current) = (current, next);
+        }
+        let (a, b) = (step1.usv_p[0], *step1.usv_p.last()?);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let length = d[0].hypot(d[1]);
+        if length < 1.0 {
+            return None;
+        }
+        let mut cross = [-d[1] / length, d[0] / length];
+        let (o0, o1) = (order[0], order[n - 1]);
+        let along: f64 = (1..step1.auv_p[0].len())
+            .map(|k| gap(cross, step1.auv_p[o0][k], step1.auv_p[o1][k]))
+            .sum();
+        if along < 0.0 {
+            cross = [-cross[0], -cross[1]];
+        }
+        Some(Lanes { order, cross })
+    }
+
+    /// The unweighted term of a trajectory, metres: Σ_k Σ_i max(0, swath − n̂ᵀ(P_{o(i+1)}\[k\] −
+    /// P_{o(i)}\[k\])), k = 1..=K.
+    pub fn value(&self, t: &Trajectory, swath: f64) -> f64 {
+        let steps = t.auv_p.first().map_or(0, Vec::len);
+        (1..steps)
+            .flat_map(|k| {
+                self.order.windows(2).map(move |w| {
+                    (swath - gap(self.cross, t.auv_p[w[0]][k], t.auv_p[w[1]][k])).max(0.0)
+                })
+            })
+            .sum()
+    }
+}
+
+/// n̂ᵀ(to − from), horizontally.
+fn gap(cross: [f64; 2], from: [f64; 3], to: [f64; 3]) -> f64 {
+    cross[0] * (to[0] - from[0]) + cross[1] * (to[1] - from[1])
+}
+
+/// The term's rows (nonnegative cone) and prices: per lane pair i and step k, its shortfall
+/// variable h ≥ 0 and b − n̂ᵀ(P_{o(i+1)}\[k\] − P_{o(i)}\[k\]) − h ≤ 0, priced w_lanes (per AUV
+/// with `weights.scaling = "per_auv"`). Nothing without lanes.
+pub(super) fn rows(p: &TeamProblem, m: &mut Assembly) {
+    let Some(lanes) = &p.lanes else { return };
+    let l = p.layout;
+    let w = &p.scenario.weights;
+    let price = w.w_lanes * w.per_auv(l.n);
+    let swath = p.scenario.auv.swath_width;
+    for (i, pair) in lanes.order.windows(2).enumerate() {
+        for k in 1..=l.k {
+            let h = l.lane_shortfall(i, k);
+            m.q[h] = price;
+            m.nonnegative(h);
+            // −n̂ᵀP_{o(i+1)} + n̂ᵀP_{o(i)} − h ≤ −b
+            let row = m.row(-swath);
+            m.a.push(row, h, -1.0);
+            for c in 0..2 {
+                m.a.push(row, l.auv_p(pair[1], k) + c, -lanes.cross[c]);
+                m.a.push(row, l.auv_p(pair[0], k) + c, lanes.cross[c]);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::{Band, Link};
+
+    /// A window of `n` AUVs at the given cross-track offsets (y, the USV heading east), the
+    /// same at every step, K = 2.
+    fn abreast(ys: &[f64]) -> Trajectory {
+        let k = 2;
+        Trajectory {
+            usv_p: (0..=k).map(|j| [100.0 * j as f64, 0.0]).collect(),
+            usv_u: vec![[1.0, 0.0]; k],
+            auv_p: ys
+                .iter()
+                .map(|&y| (0..=k).map(|j| [100.0 * j as f64, y, -50.0]).collect())
+                .collect(),
+            auv_v: vec![vec![[0.0; 3]; k + 1]; ys.len()],
+            auv_u: vec![vec![[0.0; 3]; k]; ys.len()],
+        }
+    }
+
+    /// The chain `path` (A2A edges between consecutive entries, an A2U link to the first) at
+    /// every step k = 0..=K.
+    fn chain(path: &[usize], k: usize) -> LinkSet {
+        let band = Band {
+            lo: 120.0,
+            hi: 150.0,
+        };
+        let mut step = vec![Link {
+            a: path[0],
+            b: None,
+        }];
+        step.extend(path.windows(2).map(|w| Link {
+            a: w[0],
+            b: Some(w[1]),
+        }));
+        LinkSet {
+            links: vec![step.clone(); k + 1],
+            bands: vec![vec![band; step.len()]; k + 1],
+        }
+    }
+
+    /// The order follows the chain, n̂ points the way its offsets grow, and each gap falls short
+    /// of the 50 m swath by its own measure: here −20 m (a pair out of lane order) by 70 m,
+    /// 200 m by nothing and 30 m by 20 m, at each of the 2 steps.
+    #[test]
+    fn lanes_follow_the_chain_across_the_track_and_count_each_gap_up_to_a_swath() {
+        // y of AUVs 0..3: −70, 110, −100, 130 m; the chain is 1–3–0–2, from y = 110 to −100
+        let t = abreast(&[-70.0, 110.0, -100.0, 130.0]);
+        let lanes = Lanes::of(&chain(&[1, 3, 0, 2], 2), &t).expect("a chain");
+        assert_eq!(lanes.order, vec![1, 3, 0, 2]);
+        // the USV heads east, so across is ±y; along the chain y falls: n̂ = (0, −1)
+        assert!(lanes.cross[0].abs() < 1e-12 && (lanes.cross[1] + 1.0).abs() < 1e-12);
+        let v = lanes.value(&t, 50.0);
+        assert!((v - 2.0 * (70.0 + 0.0 + 20.0)).abs() < 1e-9, "{v}");
+    }
+
+    /// No lanes for one AUV, or when the USV stays put.
+    #[test]
+    fn no_lanes_without_a_pair_or_a_course() {
+        let t = abreast(&[0.0]);
+        assert_eq!(Lanes::of(&chain(&[0], 2), &t), None);
+        let mut t = abreast(&[0.0, 60.0]);
+        for p in &mut t.usv_p {
+            *p = [0.0, 0.0];
+        }
+        assert_eq!(Lanes::of(&chain(&[0, 1], 2), &t), None);
+    }
+}
