@@ -70,9 +70,7 @@ fn model(c: &mut Criterion) {
             penalty,
         );
 
-        let (step1, links) = common::step1_and_links(&b, &mut p2);
-        let mut p5 = b.problem().with_links(links).with_lanes(&step1);
-        let radius = s.acoustic.band_tolerance.min(s.scp.trust_region);
+        let (step1, mut p5, radius) = common::step3(&b, &mut p2);
         let name = format!("p5/N={n},K=20");
         measure(&mut group, &name, &mut p5, &step1, radius, penalty);
     }

@@ -41,9 +41,7 @@ fn main() {
             .expect("P2 model");
         save(&p2, dir.join(format!("p2_N{n}.json")));
 
-        let (step1, links) = common::step1_and_links(&b, &mut p2);
-        let mut p5 = b.problem().with_links(links).with_lanes(&step1);
-        let radius = s.acoustic.band_tolerance.min(s.scp.trust_region);
+        let (step1, mut p5, radius) = common::step3(&b, &mut p2);
         let (candidate, _, _) = p5.solve_model(&step1, radius, penalty).expect("P5 model");
         save(&p5, dir.join(format!("p5_N{n}_a.json")));
         p5.solve_model(&candidate, radius, penalty)

@@ -31,6 +31,11 @@ pub(crate) fn temp_for(path: &Path) -> std::io::Result<NamedTempFile> {
 pub(crate) fn write(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let mut tmp = temp_for(path)?;
     tmp.write_all(bytes)?;
+    persist(tmp, path)
+}
+
+/// Sync a temporary file of [`temp_for`] written whole and rename it over `path`.
+pub(crate) fn persist(tmp: NamedTempFile, path: &Path) -> std::io::Result<()> {
     tmp.as_file().sync_all()?;
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())

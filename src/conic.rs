@@ -461,9 +461,7 @@ impl ConicSolver {
         };
         let mut tmp = crate::atomic_file::temp_for(path).map_err(fail)?;
         self.solver.save_to_file(tmp.as_file_mut()).map_err(fail)?;
-        tmp.as_file().sync_all().map_err(fail)?;
-        tmp.persist(path).map_err(|e| fail(e.error))?;
-        Ok(())
+        crate::atomic_file::persist(tmp, path).map_err(fail)
     }
 
     /// New values for P (triplet order), q, A (triplet order) and b. Patterns must not change.

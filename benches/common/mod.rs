@@ -64,9 +64,9 @@ pub fn setup(n: usize) -> Setup {
     }
 }
 
-/// Step 1's plan (P2's SCP run on `p2`) and Step 2's chain about it, as P5's links: what
-/// Step 3's first model is built from.
-pub fn step1_and_links(b: &Setup, p2: &mut TeamProblem) -> (Trajectory, LinkSet) {
+/// Step 1's plan (P2's SCP run on `p2`), and P5 about it as the planner builds it: Step 2's
+/// chain as its links, with its lanes term; and Step 3's first trust radius.
+pub fn step3<'b>(b: &'b Setup, p2: &mut TeamProblem) -> (Trajectory, TeamProblem<'b>, f64) {
     let s = &b.scenario;
     let step1 = shoal::step1::solve(p2, None, &mut |_| {})
         .expect("P2")
@@ -80,5 +80,7 @@ pub fn step1_and_links(b: &Setup, p2: &mut TeamProblem) -> (Trajectory, LinkSet)
         s.acoustic.graph,
     );
     let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
-    (step1, links)
+    let p5 = b.problem().with_links(links).with_lanes(&step1);
+    let radius = s.acoustic.band_tolerance.min(s.scp.trust_region);
+    (step1, p5, radius)
 }

@@ -176,8 +176,7 @@ pub fn write_geotiff(
         }
         out.flush().map_err(io)?;
     }
-    tmp.as_file().sync_all().map_err(io)?;
-    tmp.persist(path).map_err(|e| io(e.error))?;
+    crate::atomic_file::persist(tmp, path).map_err(io)?;
     Ok(())
 }
 
