@@ -39,8 +39,17 @@ impl Setup {
 
 /// The default scenario with `n` AUVs (K = 20, δ = 100 s, d_s = 150 m, seed 1).
 pub fn setup(n: usize) -> Setup {
+    let steps = Scenario::default().horizon.steps;
+    setup_steps(n, steps)
+}
+
+/// The default scenario with `n` AUVs and its window of K·δ = 2000 s cut into `steps` steps.
+pub fn setup_steps(n: usize, steps: usize) -> Setup {
     let mut scenario = Scenario::default();
     scenario.team.auvs = n;
+    let window = scenario.horizon.dt * scenario.horizon.steps as f64;
+    scenario.horizon.steps = steps;
+    scenario.horizon.dt = window / steps as f64;
     let (floor, source) = scenario_floor(&scenario, Path::new("")).expect("default floor");
     let auv = AuvModel::new(&scenario.auv, scenario.horizon.dt).expect("model");
     let usv = UsvModel {
