@@ -31,6 +31,9 @@ pub struct MetricParams {
     pub resolution: f64,
     /// Full width w of an AUV's sensor swath on the floor, metres. Zero or less: no area.
     pub swath_width: f64,
+    /// Highest altitude above the floor (metres) at which a swath counts: a segment whose ends
+    /// are not both on the grid and at most this high adds no area.
+    pub survey_altitude: f64,
 }
 
 /// Height c of the strips the explored area is measured on, metres: max(w / 10, 1 m).
@@ -83,15 +86,16 @@ impl ExploredStrips {
         }
     }
 
-    /// Adds the swath of every segment k−1 → k of every AUV of `stage` (rows left unmerged).
-    fn add_stage(&mut self, stage: &Stage, swath_width: f64) {
+    /// Adds the swath of every segment k−1 → k of every AUV of `stage` whose two ends are
+    /// `surveyed` (rows left unmerged).
+    fn add_stage(&mut self, stage: &Stage, swath_width: f64, surveyed: &dyn Fn([f64; 3]) -> bool) {
         if !(swath_width > 0.0 && swath_width.is_finite()) {
             return;
         }
         for auv in &stage.auvs {
             for s in auv.position.windows(2) {
                 let (a, b) = ([s[0][0], s[0][1]], [s[1][0], s[1][1]]);
-                if a.iter().chain(&b).all(|v| v.is_finite()) {
+                if a.iter().chain(&b).all(|v| v.is_finite()) && surveyed(s[0]) && surveyed(s[1]) {
                     self.add_stadium(a, b, swath_width / 2.0);
                 }
             }
@@ -163,9 +167,10 @@ fn merge(intervals: &mut Vec<[f64; 2]>) {
     *intervals = out;
 }
 
-/// The set swept by the AUVs of one window: for every AUV and segment k−1 → k, the points
-/// within w/2 of the horizontal segment (a stadium of area L·w + πw²/4), on strips of height
-/// [`strip_height`]`(w)`. Segments with a non-finite endpoint are skipped.
+/// The set swept by the AUVs of one window: for every AUV and segment k−1 → k whose two ends
+/// are `surveyed` (at survey altitude: [`surveyed`]), the points within w/2 of the horizontal
+/// segment (a stadium of area L·w + πw²/4), on strips of height [`strip_height`]`(w)`.
+/// Segments with a non-finite endpoint are skipped.
 ///
 /// Discretisation error: that of the midpoint rule in y on the chord length ℓ(y) of the swept
 /// set; for one stadium at most c·(total variation of ℓ) = 2c·(its longest horizontal chord), a
@@ -174,11 +179,23 @@ fn merge(intervals: &mut Vec<[f64; 2]>) {
 /// (no lattice resonance: x is exact). Measured with w = 50 m, c = 5 m over random offsets and
 /// directions: ≤ 0.2 % for L = 500 m, ≤ 1 % for L = 100 m, ≤ 2.5 % for L = 10 m (the tests
 /// check 0.5 % at 500 m). Cost: one interval per strip crossed, ≈ (|Δy| + w)/c per segment.
-pub fn explored_strips(stage: &Stage, swath_width: f64) -> ExploredStrips {
+pub fn explored_strips(
+    stage: &Stage,
+    swath_width: f64,
+    surveyed: &dyn Fn([f64; 3]) -> bool,
+) -> ExploredStrips {
     let mut strips = ExploredStrips::new(strip_height(swath_width));
-    strips.add_stage(stage, swath_width);
+    strips.add_stage(stage, swath_width, surveyed);
     strips.normalise();
     strips
+}
+
+/// Whether the waypoint `q` is at survey altitude: on the grid, and at most
+/// `survey_altitude` above the floor there.
+pub fn surveyed(floor: &Seafloor, survey_altitude: f64, q: [f64; 3]) -> bool {
+    floor
+        .elevation(q[0], q[1])
+        .is_ok_and(|z| q[2] - z <= survey_altitude)
 }
 
 /// Metrics of one window; `links[k]`, k = 0..=K, are its planned links (A2U first, then A2A)
@@ -199,7 +216,8 @@ pub fn window_metrics(
 ///
 /// - `input_energy`: Σ_windows Σ_n Σ_k ‖U_n\[k\]‖², (m/s²)².
 /// - `explored_area_km2`: area of the union over windows of [`explored_strips`], km² (an area
-///   swept twice counts once).
+///   swept twice counts once), of the segments flown at survey altitude (both ends at most
+///   `survey_altitude` above the floor, [`surveyed`]).
 /// - `revisited_area_km2`: Σ_windows (area of the window's [`explored_strips`]) − the union's,
 ///   km²: ground swept again in a later window (0 for one window).
 /// - `mean_height`, `min_height`: z − Z(x, y) over every AUV waypoint k = 1..=K of every window,
@@ -227,7 +245,9 @@ pub fn mission_metrics(
     let (mut height_sum, mut heights, mut min_height) = (0.0, 0usize, f64::INFINITY);
     let (mut steps, mut connected, mut chain) = (0usize, 0usize, 0usize);
     for (w, &(stage, links)) in windows.iter().enumerate() {
-        let own = explored_strips(stage, p.swath_width);
+        let own = explored_strips(stage, p.swath_width, &|q| {
+            surveyed(floor, p.survey_altitude, q)
+        });
         window_areas += own.area_km2();
         swept.union_with(&own);
         for auv in &stage.auvs {
@@ -405,7 +425,13 @@ mod tests {
         sonar_range: 150.0,
         resolution: 1.0,
         swath_width: 50.0,
+        survey_altitude: 15.0,
     };
+
+    /// Every waypoint at survey altitude (for the geometry tests, which have no floor).
+    fn everywhere(_: [f64; 3]) -> bool {
+        true
+    }
 
     /// 400 m × 400 m around the origin, 10 m nodes, floor at −100 m except the node column
     /// x = 0, at `ridge` metres (a wall along y between x = −10 and 10).
@@ -492,7 +518,7 @@ mod tests {
             (2.0, [1.0, 1.0]),
         ] {
             let b = [origin[0] + l * angle.cos(), origin[1] + l * angle.sin()];
-            let area = area_m2(&explored_strips(&swath(origin, b), w));
+            let area = area_m2(&explored_strips(&swath(origin, b), w, &everywhere));
             assert!(
                 (area - exact).abs() < 0.005 * exact,
                 "{angle}: {area} vs {exact}"
@@ -501,7 +527,7 @@ mod tests {
             assert!((area - exact).abs() <= 2.0 * strip_height(w) * (l + w));
         }
         assert_eq!(
-            explored_strips(&swath([0.0; 2], [10.0, 0.0]), 0.0).area_km2(),
+            explored_strips(&swath([0.0; 2], [10.0, 0.0]), 0.0, &everywhere).area_km2(),
             0.0
         );
     }
@@ -519,28 +545,53 @@ mod tests {
         // rectangle [0, L] × [−r, d + r] plus the union of two discs of radius r, d apart
         let lens = 2.0 * r * r * (d / (2.0 * r)).acos() - d / 2.0 * (4.0 * r * r - d * d).sqrt();
         let exact = l * (2.0 * r + d) + 2.0 * PI * r * r - lens;
-        let area = area_m2(&explored_strips(&s, P.swath_width));
+        let area = area_m2(&explored_strips(&s, P.swath_width, &everywhere));
         assert!((area - exact).abs() < 0.01 * exact, "{area} vs {exact}");
     }
 
     #[test]
     fn windows_union_their_swaths() {
         let f = floor(-100.0);
+        // on the grid (x, y in [−200, 200]), 10 m above its floor at z = −100
         let (first, second) = (
-            swath([0.0, 0.0], [500.0, 0.0]),
-            swath([500.0, 0.0], [1000.0, 0.0]),
+            swath([-180.0, 0.0], [0.0, 0.0]),
+            swath([0.0, 0.0], [180.0, 0.0]),
         );
         let none: &[Vec<Link>] = &[];
         let one = window_metrics(&first, none, &f, &P, [0.0; 3]).explored_area_km2;
         let twice = mission_metrics(&[(&first, none), (&first, none)], &f, &P, &[]);
         assert_eq!(twice.explored_area_km2, one);
         let both = mission_metrics(&[(&first, none), (&second, none)], &f, &P, &[]);
-        let mut swept = explored_strips(&first, P.swath_width);
-        swept.union_with(&explored_strips(&second, P.swath_width));
+        let mut swept = explored_strips(&first, P.swath_width, &everywhere);
+        swept.union_with(&explored_strips(&second, P.swath_width, &everywhere));
         assert_eq!(both.explored_area_km2, swept.area_km2());
-        let exact = (1000.0 * 50.0 + PI * 50.0 * 50.0 / 4.0) * 1e-6;
+        let exact = (360.0 * 50.0 + PI * 50.0 * 50.0 / 4.0) * 1e-6;
         assert!((both.explored_area_km2 - exact).abs() < 0.01 * exact);
-        assert!(swept.contains(750.0, 24.0) && !swept.contains(750.0, 26.0));
+        assert!(swept.contains(90.0, 24.0) && !swept.contains(90.0, 26.0));
+    }
+
+    /// A swath counts only where the AUV flies at survey altitude: of three AUVs abreast over
+    /// a flat floor at −100 m, the one 10 m up explores its stadium, the one 40 m up nothing,
+    /// and the one that climbs from 10 to 40 m over its second segment only its first.
+    #[test]
+    fn only_swaths_flown_at_survey_altitude_count() {
+        let f = floor(-100.0);
+        let low = vec![[-150.0, -100.0, -90.0], [0.0, -100.0, -90.0]];
+        let high = vec![[-150.0, 0.0, -60.0], [0.0, 0.0, -60.0]];
+        let climbs = vec![
+            [-150.0, 100.0, -90.0],
+            [0.0, 100.0, -90.0],
+            [150.0, 100.0, -60.0],
+        ];
+        let none: &[Vec<Link>] = &[];
+        let one = |path: Vec<[f64; 3]>| {
+            let s = stage(vec![[0.0; 2]; path.len()], vec![path]);
+            window_metrics(&s, none, &f, &P, [0.0; 3]).explored_area_km2
+        };
+        let stadium = (150.0 * 50.0 + PI * 50.0 * 50.0 / 4.0) * 1e-6;
+        assert!((one(low) - stadium).abs() < 0.01 * stadium);
+        assert_eq!(one(high), 0.0);
+        assert!((one(climbs) - stadium).abs() < 0.01 * stadium);
     }
 
     #[test]
@@ -646,12 +697,12 @@ mod tests {
     fn one_auv_one_step() {
         let s = stage(
             vec![[0.0, 0.0]; 2],
-            vec![vec![[0.0, -50.0, -50.0], [10.0, -50.0, -60.0]]],
+            vec![vec![[0.0, -50.0, -90.0], [10.0, -50.0, -95.0]]],
         );
         let (f, links) = (floor(-100.0), vec![vec![a2u(0)]; 2]);
         let m = window_metrics(&s, &links, &f, &P, [1.0, 0.0, 0.5]);
         assert_eq!((m.connected_fraction, m.chain_fraction), (1.0, 1.0));
-        assert_eq!((m.mean_height, m.min_height), (40.0, 40.0));
+        assert_eq!((m.mean_height, m.min_height), (5.0, 5.0));
         assert!((m.max_heading_rate, m.step1_time_s, m.step3_time_s) == (0.0, 1.0, 0.5));
         let exact = (10.0 * 50.0 + PI * 50.0 * 50.0 / 4.0) * 1e-6;
         assert!((m.explored_area_km2 - exact).abs() < 0.03 * exact);

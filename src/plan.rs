@@ -1,4 +1,4 @@
-//! The plan file, format `shoal-plan/2` (documented field by field in docs/plan-format.md).
+//! The plan file, format `shoal-plan/4` (documented field by field in docs/plan-format.md).
 //!
 //! Index conventions: a window has K steps; positions and velocities are given for k = 0..=K
 //! (K + 1 entries, k = 0 is the window's initial state), inputs for k = 0..K−1 (K entries; input
@@ -8,7 +8,7 @@ use crate::scenario::Scenario;
 use serde::{Deserialize, Serialize};
 
 /// Value of the `format` field of every plan this version writes.
-pub const FORMAT: &str = "shoal-plan/3";
+pub const FORMAT: &str = "shoal-plan/4";
 
 /// A plan as `shoal plan` writes it to `plan.json`: the resolved scenario, the floor, the
 /// models, the initial state and every window's stages, graph, links and metrics.

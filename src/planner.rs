@@ -149,6 +149,7 @@ fn metric_params(s: &Scenario) -> MetricParams {
         sonar_range: s.acoustic.sonar_range,
         resolution: s.acoustic.resolution,
         swath_width: s.auv.swath_width,
+        survey_altitude: s.auv.survey_altitude,
     }
 }
 

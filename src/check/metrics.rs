@@ -7,8 +7,10 @@
 //! The connected and chain fractions (steps k = 0..=K of a window; over the mission, k = 0..=K
 //! of the first window and k = 1..=K of the later ones) are recounted with the checker's own
 //! links (in range within `LENGTH_TOL`, in sight within `LOS_TOL`, over no obstacle cell) and
-//! must match exactly. The explored area, the union of every AUV segment's swath (the points
-//! within w/2 of it, w = `auv.swath_width`), is measured on columns of width w/32 along x,
+//! must match exactly. The explored area, the union of the swaths (the points within w/2 of
+//! the segment, w = `auv.swath_width`) of every AUV segment flown at survey altitude (both ends
+//! on the grid and at most `auv.survey_altitude` above the floor, read here from the floor by
+//! the checker), is measured on columns of width w/32 along x,
 //! exactly along each column's centre line; the planner measures it on strips along y, so the
 //! two are independent estimates of one area and must agree within [`AREA_TOL`].
 
@@ -28,10 +30,10 @@ const METRIC_TOL: f64 = 1e-6;
 const AREA_TOL: f64 = 0.05;
 
 /// The explored area (km²) of some stages: the union of the stadiums of radius w/2 about
-/// every AUV segment, measured on columns of width c = w/32 along x. Each stadium is convex,
-/// so a column's centre line x = (i + ½)c meets it in one y-interval; the intervals of a
-/// column are merged and their lengths summed.
-fn explored_km2(stages: &[&Stage], w: f64) -> Option<f64> {
+/// every AUV segment whose ends are both `low` (at survey altitude), measured on columns of
+/// width c = w/32 along x. Each stadium is convex, so a column's centre line x = (i + ½)c meets
+/// it in one y-interval; the intervals of a column are merged and their lengths summed.
+fn explored_km2(stages: &[&Stage], w: f64, low: &dyn Fn(&[f64; 3]) -> bool) -> Option<f64> {
     if !(w > 0.0 && w.is_finite()) {
         return Some(0.0);
     }
@@ -42,7 +44,7 @@ fn explored_km2(stages: &[&Stage], w: f64) -> Option<f64> {
         for auv in &st.auvs {
             for s in auv.position.windows(2) {
                 let (a, b) = ([s[0][0], s[0][1]], [s[1][0], s[1][1]]);
-                if !a.iter().chain(&b).all(|v| v.is_finite()) {
+                if !(a.iter().chain(&b).all(|v| v.is_finite()) && low(&s[0]) && low(&s[1])) {
                     continue;
                 }
                 let first = ((a[0].min(b[0]) - r) / c - 0.5).ceil();
@@ -272,10 +274,15 @@ impl Checker<'_> {
         let mut f = Family::new("recorded explored area", "relative", AREA_TOL);
         let finals: Vec<&Stage> = self.plan.windows.iter().map(|w| &w.final_).collect();
         let swath = self.s.auv.swath_width;
+        let ceiling = self.s.auv.survey_altitude;
+        let low = |q: &[f64; 3]| match self.floor.elevation(q[0], q[1]) {
+            Ok(z) => q[2] - z <= ceiling,
+            Err(_) => false,
+        };
         let mut measured = Vec::new(); // each scope's area, windows first, then the mission
         for (what, m, range) in self.scopes() {
             let stored = m.explored_area_km2;
-            let Some(found) = explored_km2(&finals[range], swath) else {
+            let Some(found) = explored_km2(&finals[range], swath, &low) else {
                 f.record(f64::NEG_INFINITY, || {
                     format!("{what}: paths too long to measure the explored area on")
                 });

@@ -138,6 +138,10 @@ pub struct Auv {
     /// Width of the seafloor swath each AUV's sensor covers (side-scan / multibeam), metres;
     /// used for the explored-area metric only.
     pub swath_width: f64,
+    /// Highest altitude above the floor at which the sensor's swath counts as explored sea
+    /// floor, metres: a segment k−1 → k adds its swath to the explored area only when both its
+    /// ends are at most this high (explored-area metric only).
+    pub survey_altitude: f64,
     /// Exact zero-order hold of eqs. (5)–(7) or the paper's forward Euler, eq. (8).
     pub discretisation: Discretisation,
     /// m, rigid-body mass, kg.
@@ -261,8 +265,8 @@ pub struct Weights {
     /// w8_2 · OF1_8_2, USV squared distance to the destination, per m².
     pub w8_2: f64,
     /// w_lanes · the lanes term (Step 3; ours, not in the paper): per metre by which a lane
-    /// neighbour's cross-track gap falls short of the swath, per step (per AUV: see `scaling`);
-    /// 0 turns it off.
+    /// neighbour's cross-track gap falls short of the swath, and by which an AUV flies above
+    /// the survey altitude, per step (per AUV: see `scaling`); 0 turns it off.
     pub w_lanes: f64,
     /// Whether w1, w2 and w5 weigh the team's sums per AUV (default) or as the paper's sums.
     pub scaling: WeightScaling,
@@ -469,6 +473,9 @@ impl Default for Auv {
             floor_clearance: 5.0,    // ε; REMUS survey altitude is typically 3–10 m
             surface_clearance: 2.0,  // stay 2 m below the surface (C1_4)
             swath_width: 50.0,       // ours: a side-scan swath of ~10× a 5 m altitude
+            // ours: that swath at ε = 5 m means a slant range of √(25² + 5²) = 25.5 m, which
+            // still covers 2·√(25.5² − 15²) = 41 m (82 %) of ground from 15 m up
+            survey_altitude: 15.0,
             discretisation: Discretisation::Zoh,
             mass: 30.51,              // Prestero Table 4.1: m = 30.51 kg
             added_mass_surge: -0.93,  // X_u̇ = −9.30e−1 kg

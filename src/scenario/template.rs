@@ -86,6 +86,11 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Width of the seafloor swath one AUV's sensor covers, metres (ours; for the \
              explored-area metric only). > 0."
         }
+        "auv.survey_altitude" => {
+            "Highest altitude above the floor at which a swath counts as explored, metres \
+             (ours; for the explored-area metric only): a segment adds its swath only when both \
+             its ends are at most this high. > 0."
+        }
         "auv.surface_clearance" => {
             "C1_4: AUVs stay under water, z ≤ −surface_clearance, metres. ≥ 0."
         }
@@ -181,10 +186,10 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "weights.w_lanes" => {
             "w_lanes · the lanes term (Step 3; ours, not in the paper): per metre by which an \
-             AUV's cross-track gap to its chain neighbour falls short of auv.swath_width, per step \
-             (per AUV: see scaling), so that the team sweeps lanes a swath apart instead of \
-             gathering at the corridor's edges. With acoustic.graph = \"lanes\" only; 0 turns it \
-             off."
+             AUV's cross-track gap to its chain neighbour falls short of auv.swath_width, and by \
+             which an AUV flies above auv.survey_altitude, per step (per AUV: see scaling), so \
+             that the team sweeps lanes a swath apart at survey altitude instead of gathering at \
+             the corridor's edges. With acoustic.graph = \"lanes\" only; 0 turns it off."
         }
         "weights.scaling" => {
             "\"per_auv\" (ours, default): w1 and w2 weigh OF1_1 and OF1_2 averaged over the N \

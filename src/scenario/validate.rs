@@ -237,6 +237,11 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         v.swath_width,
         "of metres (sensor swath, explored-area metric)",
     );
+    c.positive(
+        "auv.survey_altitude",
+        v.survey_altitude,
+        "of metres (highest altitude of a swath counted as explored)",
+    );
     c.positive("auv.mass", v.mass, "of kg (m)");
     c.non_positive("auv.added_mass_surge", v.added_mass_surge, "kg (γ_v̇x, X_u̇)");
     c.non_positive("auv.added_mass_heave", v.added_mass_heave, "kg (γ_v̇z, Z_ẇ)");

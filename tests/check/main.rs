@@ -314,6 +314,7 @@ fn record_metrics(plan: &mut Plan, floor: &Seafloor) {
         sonar_range: s.acoustic.sonar_range,
         resolution: s.acoustic.resolution,
         swath_width: s.auv.swath_width,
+        survey_altitude: s.auv.survey_altitude,
     };
     for w in &mut plan.windows {
         w.metrics = mission_metrics(&[(&w.final_, &w.links.links)], floor, &p, &[[0.0; 3]]);
@@ -985,7 +986,14 @@ fn regression_recorded_metrics_are_recomputed() {
 #[test]
 fn regression_recorded_fractions_and_area_are_verified() {
     let floor = flat();
-    let good = build(&spec(2), &floor);
+    // 40–60 m above the floor: no swath counts at the default survey altitude (15 m), and the
+    // checker agrees that nothing was explored
+    let high = build(&spec(2), &floor);
+    assert_eq!(high.metrics.explored_area_km2, 0.0);
+    assert!(check_plan(&high, &floor).passed());
+    let mut surveyed = spec(2);
+    surveyed.s.auv.survey_altitude = 100.0;
+    let good = build(&surveyed, &floor);
     let r = check_plan(&good, &floor);
     assert!(r.passed(), "{}", r.table());
     let area = r.family("recorded explored area").unwrap();
