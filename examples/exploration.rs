@@ -44,10 +44,10 @@ fn main() {
         }
     }
     println!(
-        "auvs,windows,seed,explored_km2,revisited_km2,usv_away_m,usv_path_m,chain_percent,\
-         off_band_link_steps,passed,seconds,warnings"
+        "auvs,windows,seed,explored_km2,revisited_km2,mean_height_m,usv_away_m,usv_path_m,\
+         chain_percent,off_band_link_steps,passed,seconds,warnings"
     );
-    let mut summary: BTreeMap<(u64, u64), Vec<(f64, f64)>> = BTreeMap::new();
+    let mut summary: BTreeMap<(u64, u64), Vec<[f64; 3]>> = BTreeMap::new();
     for &n in &teams {
         for &w in &windows {
             for &seed in &seeds {
@@ -85,31 +85,40 @@ fn main() {
                     .sum();
                 let off_band: usize = p.windows.iter().map(|w| w.links.out_of_band.len()).sum();
                 println!(
-                    "{n},{w},{seed},{:.4},{:.4},{away_m:.0},{path:.0},{:.1},{off_band},{passed},\
-                     {secs:.1},\"{}\"",
+                    "{n},{w},{seed},{:.4},{:.4},{:.2},{away_m:.0},{path:.0},{:.1},{off_band},\
+                     {passed},{secs:.1},\"{}\"",
                     m.explored_area_km2,
                     m.revisited_area_km2,
+                    m.mean_height,
                     100.0 * m.chain_fraction,
                     p.warnings.join(" | ").replace('"', "'")
                 );
-                summary
-                    .entry((n, w))
-                    .or_default()
-                    .push((m.explored_area_km2, away_m));
+                summary.entry((n, w)).or_default().push([
+                    m.explored_area_km2,
+                    away_m,
+                    m.mean_height,
+                ]);
             }
         }
     }
-    eprintln!("auvs windows  explored km² mean [min, max]   USV away m mean [min, max]");
+    eprintln!(
+        "auvs windows  explored km² mean [min, max]   USV away m mean [min, max]   \
+         mean height m"
+    );
     for ((n, w), v) in summary {
-        let stats = |f: &dyn Fn(&(f64, f64)) -> f64| {
-            let xs: Vec<f64> = v.iter().map(f).collect();
+        let stats = |i: usize| {
+            let xs: Vec<f64> = v.iter().map(|r| r[i]).collect();
             let mean = xs.iter().sum::<f64>() / xs.len() as f64;
             let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
             let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             (mean, lo, hi)
         };
-        let (a, a0, a1) = stats(&|x| x.0);
-        let (d, d0, d1) = stats(&|x| x.1);
-        eprintln!("{n:>4} {w:>7}  {a:>6.3} [{a0:.3}, {a1:.3}]        {d:>6.0} [{d0:.0}, {d1:.0}]");
+        let (a, a0, a1) = stats(0);
+        let (d, d0, d1) = stats(1);
+        let (h, _, _) = stats(2);
+        eprintln!(
+            "{n:>4} {w:>7}  {a:>6.3} [{a0:.3}, {a1:.3}]        {d:>6.0} [{d0:.0}, {d1:.0}]  \
+             {h:>6.1}"
+        );
     }
 }

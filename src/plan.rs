@@ -331,7 +331,8 @@ pub struct ObjectiveTerms {
     #[serde(default)]
     pub band: f64,
     /// The lanes term (Step 3; ours): Σ_k Σ metres by which lane neighbours' cross-track gaps
-    /// fall short of the swath (0 without it; absent in plans before it).
+    /// fall short of the swath, plus Σ_k Σ metres by which the AUVs fly above the survey
+    /// altitude (0 without it).
     #[serde(default)]
     pub lanes: f64,
     /// (w1·energy + w2·(height or depth))/N − w8·usv (away) or + w8_2·usv (destination), with

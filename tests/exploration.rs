@@ -206,3 +206,36 @@ fn regression_fifteen_auvs_sweep_lanes_rather_than_the_corridor_edges() {
         "with lanes {a_lanes} km², without {a_edges} km²"
     );
 }
+
+/// Each AUV's mean height above the floor over k = 1..=K of window 0, metres.
+fn mean_heights(p: &Plan, floor: &Seafloor) -> Vec<f64> {
+    p.windows[0]
+        .final_
+        .auvs
+        .iter()
+        .map(|auv| {
+            let h: Vec<f64> = auv.position[1..]
+                .iter()
+                .map(|q| q[2] - floor.elevation(q[0], q[1]).unwrap())
+                .collect();
+            h.iter().sum::<f64>() / h.len() as f64
+        })
+        .collect()
+}
+
+/// Regression (eighteenth session): C1_5 bounds the 3-D range to the USV at the surface, so
+/// an AUV gains width across the track by climbing, and the lanes term priced only the gaps:
+/// of 15 AUVs (seed 1) five flew on average 17–51 m above the floor, where a 50 m swath sees
+/// nothing, and the team's mean height was 15.9 m. The term now prices the height above the
+/// survey altitude at the gaps' own weight: every AUV stays on average within it.
+#[test]
+fn regression_the_lanes_term_lifted_the_outer_auvs_off_the_floor() {
+    let s = team(15);
+    let (p, floor) = plan(&s);
+    let heights = mean_heights(&p, &floor);
+    assert!(
+        heights.iter().all(|&h| h <= s.auv.survey_altitude),
+        "{heights:?}"
+    );
+    assert!(p.metrics.mean_height < 10.0, "{}", p.metrics.mean_height);
+}

@@ -76,7 +76,7 @@ pub(super) fn assemble(
     }
     links::lower_rows(p, r, &mut m); // Step 3 only
     bridges::rows(p, r, &mut m)?; // Step 3 only
-    lanes::rows(p, &mut m); // Step 3 only, with its lanes
+    lanes::rows(p, r, &mut m); // Step 3 only, with its lanes
     for n in 0..nn {
         for k in 1..=kk {
             m.nonnegative(l.floor_slack(n, k));

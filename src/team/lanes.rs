@@ -1,18 +1,30 @@
-//! The lanes term of P5 (Step 3; ours, not in the paper): how far each AUV's cross-track gap to
-//! its neighbour in the window's chain falls short of the swath width, priced as
-//! w_lanes·Σ_k Σ_i max(0, b − n̂ᵀ(P_{o(i+1)}\[k\] − P_{o(i)}\[k\])), with o the chain's order (its
-//! lanes, `acoustic.graph = "lanes"`), n̂ the window's cross-track direction and b
-//! `auv.swath_width`. Zero when every lane neighbour is a swath or more across the track.
+//! The lanes term of P5 (Step 3; ours, not in the paper): the team sweeps lanes a swath apart
+//! at survey altitude. It prices, at w_lanes per metre, how far each AUV's cross-track gap to
+//! its neighbour in the window's chain falls short of the swath, and how far each AUV flies
+//! above the survey altitude:
+//! w_lanes·[Σ_k Σ_i max(0, b − n̂ᵀ(P_{o(i+1)}\[k\] − P_{o(i)}\[k\])) + Σ_k Σ_n max(0, z_n\[k\] −
+//! Z(x_n\[k\], y_n\[k\]) − h_s)], with o the chain's order (its lanes, `acoustic.graph =
+//! "lanes"`), n̂ the window's cross-track direction, b `auv.swath_width` and h_s
+//! `auv.survey_altitude`. Zero when every lane neighbour is a swath or more across the track
+//! and every AUV at most h_s above the floor.
 //!
-//! Why: OF1_5, a sum of squared distances, is largest with the team in two clusters at the
-//! corridor's edges, where swaths overlap while strips between them go unswept (BENCHMARKS.md,
-//! "The team's cross-track layout below the corridor's cap"). The gap to a lane neighbour
-//! adds sea floor only up to one swath, so this term asks for lanes a swath apart and no more.
+//! Why the gaps: OF1_5, a sum of squared distances, is largest with the team in two clusters at
+//! the corridor's edges, where swaths overlap while strips between them go unswept
+//! (BENCHMARKS.md, "The team's cross-track layout below the corridor's cap"). The gap to a lane
+//! neighbour adds sea floor only up to one swath, so the term asks for lanes a swath apart and
+//! no more.
 //!
-//! A maximum of affine functions is convex, so the term is exact in the convex model: one
-//! variable h ≥ 0, h ≥ b − n̂ᵀ(P_{o(i+1)} − P_{o(i)}) per pair and step, priced w_lanes. n̂ and o
-//! are fixed for the window (from Step 1's plan), so the true objective is one function of the
-//! positions for the whole SCP.
+//! Why the altitude: C1_5 and C1_6 bound the 3-D range to the USV at the surface, so an AUV
+//! gains width across the track by climbing (dr/dz = |z|/r). Priced for the gaps alone, the
+//! outermost AUVs of a team of 15–20 climbed 40–70 m above the floor, where their swaths see
+//! nothing (the explored area counts only swaths flown at survey altitude). With the height
+//! above h_s priced at the gaps' own w_lanes, a metre of climb costs more than the at most
+//! |z|/r < 1 metre of gap it can buy (BENCHMARKS.md, "What the lanes term cost in height").
+//!
+//! Both sums are maxima of affine functions, convex, one variable and two rows per pair (per
+//! AUV) and step: the gaps exact in the convex model, the height through the floor linearised
+//! about the reference, as OF1_2's. n̂ and o are fixed for the window (from Step 1's plan), so
+//! the true objective is one function of the positions for the whole SCP.
 
 use super::links::LinkSet;
 use super::model::Assembly;
@@ -72,9 +84,9 @@ impl Lanes {
         Some(Lanes { order, cross })
     }
 
-    /// The unweighted term of a trajectory, metres: Σ_k Σ_i max(0, swath − n̂ᵀ(P_{o(i+1)}\[k\] −
+    /// The gaps' part of the term, metres: Σ_k Σ_i max(0, swath − n̂ᵀ(P_{o(i+1)}\[k\] −
     /// P_{o(i)}\[k\])), k = 1..=K.
-    pub fn value(&self, t: &Trajectory, swath: f64) -> f64 {
+    pub fn shortfall(&self, t: &Trajectory, swath: f64) -> f64 {
         let steps = t.auv_p.first().map_or(0, Vec::len);
         (1..steps)
             .flat_map(|k| {
@@ -91,10 +103,26 @@ fn gap(cross: [f64; 2], from: [f64; 3], to: [f64; 3]) -> f64 {
     cross[0] * (to[0] - from[0]) + cross[1] * (to[1] - from[1])
 }
 
-/// The term's rows (nonnegative cone) and prices: per lane pair i and step k, its shortfall
-/// variable h ≥ 0 and b − n̂ᵀ(P_{o(i+1)}\[k\] − P_{o(i)}\[k\]) − h ≤ 0, priced w_lanes (per AUV
-/// with `weights.scaling = "per_auv"`). Nothing without lanes.
-pub(super) fn rows(p: &TeamProblem, m: &mut Assembly) {
+/// The unweighted term of `t`, metres (0 without lanes): the gaps' shortfall
+/// ([`Lanes::shortfall`]) and Σ_k Σ_n max(0, z_n\[k\] − Z(x_n\[k\], y_n\[k\]) − h_s), k = 1..=K.
+pub(super) fn value(p: &TeamProblem, t: &Trajectory) -> f64 {
+    let Some(lanes) = &p.lanes else { return 0.0 };
+    let survey = p.scenario.auv.survey_altitude;
+    let above: f64 = t
+        .auv_p
+        .iter()
+        .flat_map(|path| path[1..].iter())
+        .map(|&q| (q[2] - p.floor_linearisation(q).0 - survey).max(0.0))
+        .sum();
+    lanes.shortfall(t, p.scenario.auv.swath_width) + above
+}
+
+/// The term's rows (nonnegative cone) and prices, w_lanes each (per AUV with `weights.scaling =
+/// "per_auv"`): per lane pair i and step k, its shortfall variable h ≥ 0 and
+/// b − n̂ᵀ(P_{o(i+1)}\[k\] − P_{o(i)}\[k\]) − h ≤ 0; per AUV n and step k, its height above the
+/// survey altitude a ≥ 0 and z − Z̄ − ∇Z̄ᵀ(x − x̄, y − ȳ) − h_s − a ≤ 0, the floor linearised
+/// about the reference `r`. Nothing without lanes.
+pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) {
     let Some(lanes) = &p.lanes else { return };
     let l = p.layout;
     let w = &p.scenario.weights;
@@ -112,6 +140,23 @@ pub(super) fn rows(p: &TeamProblem, m: &mut Assembly) {
                 m.a.push(row, l.auv_p(pair[1], k) + c, -lanes.cross[c]);
                 m.a.push(row, l.auv_p(pair[0], k) + c, lanes.cross[c]);
             }
+        }
+    }
+    let survey = p.scenario.auv.survey_altitude;
+    for n in 0..l.n {
+        for k in 1..=l.k {
+            let a = l.lane_altitude(n, k);
+            m.q[a] = price;
+            m.nonnegative(a);
+            // z − ∇Zᵀ(x, y) − a ≤ h_s + Z̄ − ∇Zᵀ(x̄, ȳ)
+            let x = r.auv_p[n][k];
+            let (z, grad) = p.floor_linearisation(x);
+            let row = m.row(survey + z - grad[0] * x[0] - grad[1] * x[1]);
+            let col = l.auv_p(n, k);
+            m.a.push(row, col, -grad[0]);
+            m.a.push(row, col + 1, -grad[1]);
+            m.a.push(row, col + 2, 1.0);
+            m.a.push(row, a, -1.0);
         }
     }
 }
@@ -169,7 +214,7 @@ mod tests {
         assert_eq!(lanes.order, vec![1, 3, 0, 2]);
         // the USV heads east, so across is ±y; along the chain y falls: n̂ = (0, −1)
         assert!(lanes.cross[0].abs() < 1e-12 && (lanes.cross[1] + 1.0).abs() < 1e-12);
-        let v = lanes.value(&t, 50.0);
+        let v = lanes.shortfall(&t, 50.0);
         assert!((v - 2.0 * (70.0 + 0.0 + 20.0)).abs() < 1e-9, "{v}");
     }
 

@@ -10,8 +10,9 @@
 //! "< d_s") and ν (below the lower end, "> d_s − d_t"). Over a grid with obstacles come next
 //! the slacks ν_u[1..=K] of the USV's keep-out rows; then, per planned link l and step k, the
 //! slack ν_los[l][k] of its line-of-sight rows (P5 only, over every grid); after them, per
-//! bridge b (P5's `bridges`), the slacks σ_b of its range and ν_b of its line of sight; last,
-//! per lane pair i and step k, the shortfall h[i][k] of P5's lanes term (`lanes`).
+//! bridge b (P5's `bridges`), the slacks σ_b of its range and ν_b of its line of sight; then,
+//! per lane pair i and step k, the shortfall h[i][k] of P5's lanes term (`lanes`), and last, with
+//! the lanes, per AUV n and step k, its height a[n][k] above the survey altitude.
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -33,7 +34,21 @@ impl Layout {
     const AUV_BLOCK: usize = 13;
 
     pub fn variables(&self) -> usize {
+        self.altitude_base()
+            + if self.lane_pairs > 0 {
+                self.n * self.k
+            } else {
+                0
+            }
+    }
+    fn altitude_base(&self) -> usize {
         self.lane_base() + self.lane_pairs * self.k
+    }
+    /// a\[n\]\[k\]: how far AUV n flies above the survey altitude at step k (`lanes`, with its
+    /// lane pairs), k = 1..=K.
+    pub fn lane_altitude(&self, n: usize, k: usize) -> usize {
+        debug_assert!(self.lane_pairs > 0 && n < self.n && k >= 1 && k <= self.k);
+        self.altitude_base() + n * self.k + (k - 1)
     }
     fn lane_base(&self) -> usize {
         self.bridge_base() + 2 * self.bridges
@@ -58,7 +73,7 @@ impl Layout {
     }
     /// The scale of every variable for the solver (x = scale ∘ x̃, `ConicSolver::with_scale`):
     /// `position` (metres) for positions, the squared steps τ (metres, of the order of a
-    /// step) and the lanes' shortfalls (metres), 1 for the rest (velocities and inputs are of order 10⁻² to 1 in SI
+    /// step) and the lanes' shortfalls and altitudes (metres), 1 for the rest (velocities and inputs are of order 10⁻² to 1 in SI
     /// units already, as are the slacks).
     ///
     /// Unscaled, positions of 10²–10³ m sit beside inputs of 10⁻² m/s², and Clarabel's
@@ -75,6 +90,11 @@ impl Layout {
             }
             for i in 0..self.lane_pairs {
                 d[self.lane_shortfall(i, k)] = position;
+            }
+            if self.lane_pairs > 0 {
+                for n in 0..self.n {
+                    d[self.lane_altitude(n, k)] = position;
+                }
             }
         }
         d
@@ -167,7 +187,8 @@ impl Layout {
 mod tests {
     use super::*;
 
-    /// Positions, the squared steps and the lanes' shortfalls, and only those, are scaled.
+    /// Positions, the squared steps and the lanes' shortfalls and altitudes, and only those, are
+    /// scaled.
     #[test]
     fn scale_marks_the_positions() {
         let l = Layout {
@@ -189,6 +210,8 @@ mod tests {
                 positions[l.start_square(n, k)] = true;
             }
             positions[l.lane_shortfall(0, k)] = true;
+            positions[l.lane_altitude(0, k)] = true;
+            positions[l.lane_altitude(1, k)] = true;
         }
         for (i, &p) in positions.iter().enumerate() {
             assert_eq!(d[i], if p { 150.0 } else { 1.0 }, "variable {i}");
@@ -259,6 +282,11 @@ mod tests {
             for i in 0..lane_pairs {
                 for s in 1..=k {
                     mark(l.lane_shortfall(i, s), 1);
+                }
+            }
+            for a in 0..if lane_pairs > 0 { n } else { 0 } {
+                for s in 1..=k {
+                    mark(l.lane_altitude(a, s), 1);
                 }
             }
             assert!(

@@ -42,7 +42,8 @@ pub struct Terms {
     /// OF1_4 as C5_3's slack: Σ_k Σ metres by which A2A edges are outside their bands.
     pub band_a2a: f64,
     /// The lanes term (ours, `lanes`): Σ_k Σ metres by which lane neighbours' cross-track gaps
-    /// fall short of the swath (0 without it).
+    /// fall short of the swath, and by which the AUVs fly above the survey altitude (0 without
+    /// it).
     pub lanes: f64,
 }
 
@@ -73,10 +74,7 @@ pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
         }
         None => (0.0, 0.0, 0.0),
     };
-    let lanes = p
-        .lanes
-        .as_ref()
-        .map_or(0.0, |l| l.value(t, p.scenario.auv.swath_width));
+    let lanes = super::lanes::value(p, t);
     let pk = t.usv_p[p.layout.k];
     let s = p.scenario;
     let usv = match s.usv.objective {
