@@ -164,7 +164,10 @@ pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mission::scenario_floor;
     use crate::plan::{Band, Link};
+    use crate::scenario::Scenario;
+    use proptest::prelude::*;
 
     /// A window of `n` AUVs at the given cross-track offsets (y, the USV heading east), the
     /// same at every step, K = 2.
@@ -228,5 +231,77 @@ mod tests {
             *p = [0.0, 0.0];
         }
         assert_eq!(Lanes::of(&chain(&[0, 1], 2), &t), None);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// The altitude rows of `rows` at a waypoint moved by d from the reference (a = 0): the
+        /// excess they read, −s = z − Z̄ − ∇Z̄ᵀd − h_s, is the true z − Z(x̄ + d) − h_s up to the
+        /// bilinear floor's second order (central differences: |d| ≤ 1 cm), and at the
+        /// reference (d = 0) `value` is the shortfall plus Σ max(0, −s): model and merit agree
+        /// there, as SCvx needs.
+        #[test]
+        fn the_altitude_rows_read_the_height_above_the_survey_altitude(
+            k in 1usize..=3, dx in -0.01..0.01f64, dy in -0.01..0.01f64, dz in -30.0..30.0f64,
+        ) {
+            let mut s = Scenario::default();
+            s.team.auvs = 2;
+            s.horizon.steps = 3;
+            let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
+            let keep_out = floor.keep_out();
+            let p = TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
+            let mut r = p.initial_guess(None);
+            let p = p.with_links(chain(&[0, 1], 3)).with_lanes(&r);
+            prop_assert!(p.lanes.is_some());
+            let l = p.layout;
+            // the reference's waypoints at heights from 5 to 35 m over the floor
+            for (n, path) in r.auv_p.iter_mut().enumerate() {
+                for (j, q) in path.iter_mut().enumerate().skip(1) {
+                    q[2] = floor.elevation(q[0], q[1]).unwrap() + 5.0 + 10.0 * (n + j) as f64;
+                }
+            }
+            let mut m = Assembly::new(l.variables());
+            rows(&p, &r, &mut m);
+            let slack = |x: &[f64]| {
+                let mut s = m.b.clone();
+                for i in 0..m.a.len() {
+                    s[m.a.rows[i]] -= m.a.vals[i] * x[m.a.cols[i]];
+                }
+                s
+            };
+            // the altitude row of AUV n at step j: the one that holds its column a[n][j]
+            let row_of = |n: usize, j: usize| {
+                let a = l.lane_altitude(n, j);
+                (0..m.a.len())
+                    .find(|&i| m.a.cols[i] == a && m.a.vals[i] == -1.0 && m.b[m.a.rows[i]] != 0.0)
+                    .map(|i| m.a.rows[i])
+                    .unwrap()
+            };
+            let mut x = vec![0.0; l.variables()];
+            for (n, path) in r.auv_p.iter().enumerate() {
+                for (j, q) in path.iter().enumerate().skip(1) {
+                    x[l.auv_p(n, j)..l.auv_p(n, j) + 3].copy_from_slice(q);
+                }
+            }
+            let h_s = s.auv.survey_altitude;
+            let at_reference = slack(&x);
+            let mut read = 0.0;
+            for n in 0..2 {
+                for j in 1..=3 {
+                    read += (-at_reference[row_of(n, j)]).max(0.0);
+                }
+            }
+            let shortfall = p.lanes.as_ref().unwrap().shortfall(&r, s.auv.swath_width);
+            prop_assert!((value(&p, &r) - (shortfall + read)).abs() < 1e-9);
+            // moved by d
+            let c = l.auv_p(0, k);
+            x[c] += dx;
+            x[c + 1] += dy;
+            x[c + 2] += dz;
+            let q = r.auv_p[0][k];
+            let truth = q[2] + dz - floor.elevation(q[0] + dx, q[1] + dy).unwrap() - h_s;
+            let model = -slack(&x)[row_of(0, k)];
+            prop_assert!((model - truth).abs() < 1e-6, "model {model}, floor {truth}");
+        }
     }
 }
