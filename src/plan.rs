@@ -330,8 +330,8 @@ pub struct ObjectiveTerms {
     /// their bands.
     #[serde(default)]
     pub band: f64,
-    /// The lanes term (Step 3; ours): Σ_k Σ metres by which lane neighbours' cross-track gaps
-    /// fall short of the swath, plus Σ_k Σ metres by which the AUVs fly above the survey
+    /// The lanes term (Step 3; ours): Σ_{k<K} Σ metres by which lane neighbours' cross-track
+    /// gaps fall short of the swath, plus Σ_k Σ metres by which the AUVs fly above the survey
     /// altitude (0 without it).
     #[serde(default)]
     pub lanes: f64,

@@ -5,8 +5,17 @@
 //! w_lanes·[Σ_k Σ_i max(0, b − n̂ᵀ(P_{o(i+1)}\[k\] − P_{o(i)}\[k\])) + Σ_k Σ_n max(0, z_n\[k\] −
 //! Z(x_n\[k\], y_n\[k\]) − h_s)], with o the chain's order (its lanes, `acoustic.graph =
 //! "lanes"`), n̂ the window's cross-track direction, b `auv.swath_width` and h_s
-//! `auv.survey_altitude`. Zero when every lane neighbour is a swath or more across the track
-//! and every AUV at most h_s above the floor.
+//! `auv.survey_altitude`; the gaps' sum runs over k = 1..K − 1, the altitude's over k = 1..=K.
+//! Zero when every lane neighbour is a swath or more across the track and every AUV at most
+//! h_s above the floor.
+//!
+//! Why not the gaps at k = K: C1_6 gathers every AUV within d_s of the USV there (3-D), so a
+//! team at the floor has a circle of radius √(d_s² − z²) to spread in (about 112 m at
+//! z = −100 m) while the chain's links stay 120–150 m long: too little room for lanes a swath
+//! apart from N = 5 on. Asked for them, the team either climbed (before
+//! the altitude was priced) or kept a shortfall whose size depends on the floor under the
+//! rendezvous, thousands in J at N = 5, which made the objective swing from seed to seed
+//! (BENCHMARKS.md, "What the lanes term cost in height").
 //!
 //! Why the gaps: OF1_5, a sum of squared distances, is largest with the team in two clusters at
 //! the corridor's edges, where swaths overlap while strips between them go unswept
@@ -85,10 +94,10 @@ impl Lanes {
     }
 
     /// The gaps' part of the term, metres: Σ_k Σ_i max(0, swath − n̂ᵀ(P_{o(i+1)}\[k\] −
-    /// P_{o(i)}\[k\])), k = 1..=K.
+    /// P_{o(i)}\[k\])), k = 1..K (not at k = K, where C1_6 gathers the team).
     pub fn shortfall(&self, t: &Trajectory, swath: f64) -> f64 {
         let steps = t.auv_p.first().map_or(0, Vec::len);
-        (1..steps)
+        (1..steps.saturating_sub(1))
             .flat_map(|k| {
                 self.order.windows(2).map(move |w| {
                     (swath - gap(self.cross, t.auv_p[w[0]][k], t.auv_p[w[1]][k])).max(0.0)
@@ -129,7 +138,8 @@ pub(super) fn rows(p: &TeamProblem, r: &Trajectory, m: &mut Assembly) {
     let price = w.w_lanes * w.per_auv(l.n);
     let swath = p.scenario.auv.swath_width;
     for (i, pair) in lanes.order.windows(2).enumerate() {
-        for k in 1..=l.k {
+        // not at k = K, where C1_6 gathers the team within d_s of the USV
+        for k in 1..l.k {
             let h = l.lane_shortfall(i, k);
             m.q[h] = price;
             m.nonnegative(h);
@@ -170,9 +180,9 @@ mod tests {
     use proptest::prelude::*;
 
     /// A window of `n` AUVs at the given cross-track offsets (y, the USV heading east), the
-    /// same at every step, K = 2.
+    /// same at every step, K = 3.
     fn abreast(ys: &[f64]) -> Trajectory {
-        let k = 2;
+        let k = 3;
         Trajectory {
             usv_p: (0..=k).map(|j| [100.0 * j as f64, 0.0]).collect(),
             usv_u: vec![[1.0, 0.0]; k],
@@ -208,12 +218,13 @@ mod tests {
 
     /// The order follows the chain, n̂ points the way its offsets grow, and each gap falls short
     /// of the 50 m swath by its own measure: here −20 m (a pair out of lane order) by 70 m,
-    /// 200 m by nothing and 30 m by 20 m, at each of the 2 steps.
+    /// 200 m by nothing and 30 m by 20 m, at steps 1 and 2 and not at k = K = 3, where C1_6
+    /// gathers the team.
     #[test]
     fn lanes_follow_the_chain_across_the_track_and_count_each_gap_up_to_a_swath() {
         // y of AUVs 0..3: −70, 110, −100, 130 m; the chain is 1–3–0–2, from y = 110 to −100
         let t = abreast(&[-70.0, 110.0, -100.0, 130.0]);
-        let lanes = Lanes::of(&chain(&[1, 3, 0, 2], 2), &t).expect("a chain");
+        let lanes = Lanes::of(&chain(&[1, 3, 0, 2], 3), &t).expect("a chain");
         assert_eq!(lanes.order, vec![1, 3, 0, 2]);
         // the USV heads east, so across is ±y; along the chain y falls: n̂ = (0, −1)
         assert!(lanes.cross[0].abs() < 1e-12 && (lanes.cross[1] + 1.0).abs() < 1e-12);
@@ -225,12 +236,12 @@ mod tests {
     #[test]
     fn no_lanes_without_a_pair_or_a_course() {
         let t = abreast(&[0.0]);
-        assert_eq!(Lanes::of(&chain(&[0], 2), &t), None);
+        assert_eq!(Lanes::of(&chain(&[0], 3), &t), None);
         let mut t = abreast(&[0.0, 60.0]);
         for p in &mut t.usv_p {
             *p = [0.0, 0.0];
         }
-        assert_eq!(Lanes::of(&chain(&[0, 1], 2), &t), None);
+        assert_eq!(Lanes::of(&chain(&[0, 1], 3), &t), None);
     }
 
     proptest! {

@@ -42,7 +42,7 @@ impl Layout {
             }
     }
     fn altitude_base(&self) -> usize {
-        self.lane_base() + self.lane_pairs * self.k
+        self.lane_base() + self.lane_pairs * (self.k - 1)
     }
     /// a\[n\]\[k\]: how far AUV n flies above the survey altitude at step k (`lanes`, with its
     /// lane pairs), k = 1..=K.
@@ -54,10 +54,10 @@ impl Layout {
         self.bridge_base() + 2 * self.bridges
     }
     /// h\[i\]\[k\]: how far lane pair i's cross-track gap falls short of the swath at step k
-    /// (`lanes`), k = 1..=K.
+    /// (`lanes`), k = 1..K (not at k = K, where C1_6 gathers the team).
     pub fn lane_shortfall(&self, i: usize, k: usize) -> usize {
-        debug_assert!(i < self.lane_pairs && k >= 1 && k <= self.k);
-        self.lane_base() + i * self.k + (k - 1)
+        debug_assert!(i < self.lane_pairs && k >= 1 && k < self.k);
+        self.lane_base() + i * (self.k - 1) + (k - 1)
     }
     fn bridge_base(&self) -> usize {
         self.los_base() + self.k * self.links
@@ -88,7 +88,7 @@ impl Layout {
                 d[self.end_square(n, k)] = position;
                 d[self.start_square(n, k)] = position;
             }
-            for i in 0..self.lane_pairs {
+            for i in 0..if k < self.k { self.lane_pairs } else { 0 } {
                 d[self.lane_shortfall(i, k)] = position;
             }
             if self.lane_pairs > 0 {
@@ -209,7 +209,9 @@ mod tests {
                 positions[l.end_square(n, k)] = true;
                 positions[l.start_square(n, k)] = true;
             }
-            positions[l.lane_shortfall(0, k)] = true;
+            if k < 3 {
+                positions[l.lane_shortfall(0, k)] = true;
+            }
             positions[l.lane_altitude(0, k)] = true;
             positions[l.lane_altitude(1, k)] = true;
         }
@@ -280,7 +282,7 @@ mod tests {
                 mark(l.bridge_los_slack(b), 1);
             }
             for i in 0..lane_pairs {
-                for s in 1..=k {
+                for s in 1..k {
                     mark(l.lane_shortfall(i, s), 1);
                 }
             }
