@@ -48,6 +48,7 @@ pub mod positions;
 pub mod report;
 pub mod scenario;
 pub mod seafloor;
+pub mod sim;
 pub mod viewer;
 
 #[doc(hidden)]
