@@ -101,6 +101,31 @@ enum Command {
         #[arg(long, value_name = "OUT.csv", conflicts_with = "out")]
         csv: Option<PathBuf>,
     },
+    /// Fly a plan with 6-DoF REMUS 100 models in the scenario's current, measure what the
+    /// vehicles would (DVL, compass, depth, GPS, acoustic ranges), and estimate every AUV's
+    /// position with and without the acoustic chain; writes sim.json and prints the errors.
+    Simulate {
+        /// The plan file (plan.json) to fly.
+        plan: PathBuf,
+        /// Override a [current], [navigation] or [simulation] key, e.g. --set
+        /// current.velocity=[0.3,0] (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Seed of the simulation's draws (sensor errors, noise, packets); default: the plan's
+        /// seed.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Monte Carlo: fly the plan RUNS times (seeds SEED, SEED+1, …) and print each metric's
+        /// mean and spread; sim.json holds the first run and the runs' summary.
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=10000))]
+        runs: u64,
+        /// The file to write; default: sim.json beside the plan.
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Fly over this seafloor grid instead of the one the plan names.
+        #[arg(long)]
+        seafloor: Option<PathBuf>,
+    },
     /// Seafloor tools.
     Seafloor {
         #[command(subcommand)]
@@ -281,6 +306,14 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             seafloor,
         } => view(&plan, seafloor.as_deref(), &out),
+        Command::Simulate {
+            plan,
+            set,
+            seed,
+            runs,
+            out,
+            seafloor,
+        } => simulate(&plan, &set, seed, runs as usize, out, seafloor.as_deref()),
         Command::Export { plan, out, csv } => {
             let csv = out.or(csv).expect("clap requires OUT.csv or --csv");
             let p = shoal::output::read_plan(&plan)?;
@@ -417,6 +450,35 @@ fn four_numbers(text: &str) -> Result<[f64; 4], String> {
             "{text:?}: expected four finite numbers separated by commas"
         )),
     }
+}
+
+fn simulate(
+    plan: &Path,
+    set: &[String],
+    seed: Option<u64>,
+    runs: usize,
+    out: Option<PathBuf>,
+    seafloor: Option<&Path>,
+) -> Result<ExitCode> {
+    let p = shoal::output::read_plan(plan)?;
+    let floor = shoal::check::load_floor(&p, seafloor)
+        .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
+    let name = plan.display().to_string();
+    let p = shoal::sim::run::with_settings(&p, &name, set)?;
+    let seed = seed.unwrap_or(p.scenario.seed);
+    let start = std::time::Instant::now();
+    let record = shoal::sim::monte_carlo(&p, &name, &floor, seed, runs)?;
+    let out = out.unwrap_or_else(|| base_dir(Some(plan)).join("sim.json"));
+    shoal::sim::write(&record, &out)?;
+    print!("{}", shoal::sim::summary::table(&record));
+    println!(
+        "wrote {} ({} run{}, seed {seed}, {:.1} s)",
+        out.display(),
+        runs,
+        if runs == 1 { "" } else { "s" },
+        start.elapsed().as_secs_f64()
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 fn view(plan: &Path, seafloor: Option<&Path>, out: &Path) -> Result<ExitCode> {

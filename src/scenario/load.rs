@@ -733,3 +733,17 @@ fn range_error(v: &Violation, root: &Item, origins: &Origins) -> ScenarioError {
         allowed: v.allowed.clone(),
     }
 }
+
+/// `s` with `overrides` applied (`dotted.key=value`, as `--set` takes them), validated again;
+/// errors name `source` (e.g. the plan file whose scenario it is) or the override.
+pub fn with_overrides(
+    s: &Scenario,
+    source: &str,
+    overrides: &[String],
+) -> Result<Scenario, ScenarioError> {
+    if overrides.is_empty() {
+        return Ok(s.clone());
+    }
+    let text = super::schema::to_document(s).to_string();
+    from_toml_str(&text, source, overrides)
+}

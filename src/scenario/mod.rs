@@ -11,13 +11,20 @@ use serde::{Deserialize, Serialize};
 
 mod load;
 mod schema;
+mod sim;
 mod template;
 mod toml_path;
 mod validate;
 
-pub use load::{default_with, from_toml_str, load, ScenarioError, EMBEDDED_DEFAULT};
+pub use load::{
+    default_with, from_toml_str, load, with_overrides, ScenarioError, EMBEDDED_DEFAULT,
+};
+pub use sim::{profile_factor, Current, Navigation, Simulation};
 pub use template::default_toml;
-pub use validate::{validate, Violation, MAX_AUVS, MAX_CELLS_PER_SIDE, MAX_FEATURES, MAX_STEPS};
+pub use validate::{
+    validate, whole_multiple as validate_whole_multiple, Violation, MAX_AUVS, MAX_CELLS_PER_SIDE,
+    MAX_FEATURES, MAX_STEPS,
+};
 
 /// A full, resolved scenario. Every field has a default, so an empty file is a valid scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -43,6 +50,12 @@ pub struct Scenario {
     pub seafloor: SeafloorSpec,
     /// `[scp]`: settings of the sequential convex programming solver of P2 and P5.
     pub scp: Scp,
+    /// `[current]`: the ocean current `shoal simulate` flies the plan in (the planner ignores it).
+    pub current: Current,
+    /// `[navigation]`: the sensors and acoustic modems of `shoal simulate`.
+    pub navigation: Navigation,
+    /// `[simulation]`: how `shoal simulate` integrates the vehicles.
+    pub simulation: Simulation,
     /// Explicit initial state; when absent it is drawn from `seed` (Algorithm 1, line 5).
     pub initial: Option<Initial>,
 }
@@ -421,6 +434,9 @@ impl Default for Scenario {
             weights: Weights::default(),
             seafloor: SeafloorSpec::default(),
             scp: Scp::default(),
+            current: Current::default(),
+            navigation: Navigation::default(),
+            simulation: Simulation::default(),
             initial: None,
         }
     }

@@ -295,6 +295,72 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "scp.step1_max_iterations" => {
             "Step 1 (P2) only: its own max_iterations (when absent: max_iterations). ≥ 1."
         }
+        "current" => {
+            "The ocean current `shoal simulate` flies the plan in (ours; the planner does not \
+             know it): horizontal, constant in time, the same everywhere at a given depth."
+        }
+        "current.velocity" => {
+            "[east, north] velocity at the surface, m/s (default: a weak 0.1 m/s tidal current, \
+             across the default first course; shelf currents are typically 0.1–0.5 m/s). \
+             Finite; speed ≤ 3 m/s."
+        }
+        "current.profile" => {
+            "Depth profile: [[depth, factor], …], depths in metres (≥ 0, increasing), the \
+             current at depth d being velocity × the factor interpolated in d (held beyond the \
+             ends), e.g. [[0, 1.0], [100, 0.3]]. Empty: uniform. Factors finite, |factor| ≤ 10."
+        }
+        "navigation" => {
+            "The sensors and acoustic modems of `shoal simulate` (ours; each default a typical \
+             value for a REMUS 100-class vehicle, sources in the comments of the code and in \
+             docs/simulation.md): dead reckoning from a DVL, a compass / AHRS and a depth \
+             sensor; GPS on the USV; one-way travel-time acoustic ranges."
+        }
+        "navigation.sample_period" => {
+            "Sampling period of the DVL, heading, depth sensor and GPS, seconds. > 0, and \
+             acoustic_period is a whole number of them."
+        }
+        "navigation.dvl_noise" => {
+            "DVL velocity noise, m/s, 1σ per axis and sample (a 1.2 MHz DVL: ~1 cm/s). ≥ 0."
+        }
+        "navigation.dvl_scale" => {
+            "DVL scale-factor error, a fraction, 1σ drawn once per AUV (±0.2 %: Teledyne RDI \
+             Workhorse Navigator 1200 kHz). 0 ≤ value < 0.1."
+        }
+        "navigation.dvl_max_altitude" => {
+            "Highest altitude for DVL bottom lock, metres (1.2 MHz: ~30 m); above it the DVL \
+             measures the velocity through the water and dead reckoning misses the current. > 0."
+        }
+        "navigation.heading_noise" => "Compass / AHRS heading noise, rad, 1σ per sample. ≥ 0.",
+        "navigation.heading_bias" => {
+            "Compass / AHRS heading bias, rad, 1σ drawn once per AUV (default 1°: a \
+             calibrated magnetic compass). 0 ≤ value < 0.5."
+        }
+        "navigation.depth_noise" => "Depth (pressure) sensor noise, metres, 1σ per sample. ≥ 0.",
+        "navigation.gps_noise" => "USV GPS noise, metres, 1σ per horizontal axis. > 0.",
+        "navigation.initial_noise" => {
+            "Error of each AUV's start position (its GPS fix before the dive), metres, 1σ per \
+             axis. > 0."
+        }
+        "navigation.acoustic_period" => {
+            "Acoustic cycle, seconds: every link pings once per cycle, and the estimators solve \
+             for every vehicle's position once per cycle. > 0; horizon.dt is a whole number of \
+             cycles."
+        }
+        "navigation.sound_speed" => "Speed of sound, m/s (travel time × speed = range). > 0.",
+        "navigation.range_noise" => "Acoustic range noise, metres, 1σ. > 0.",
+        "navigation.packet_success" => {
+            "Probability that a ping is received at short range. 0 < value ≤ 1."
+        }
+        "navigation.range_falloff" => {
+            "Reception at range d is packet_success·(1 − (d/d_s)^range_falloff) below d_s = \
+             acoustic.sonar_range, and 0 beyond it or without line of sight (the floor's segment \
+             query on the executed positions). > 0."
+        }
+        "simulation" => "How `shoal simulate` flies a plan (ours).",
+        "simulation.step" => {
+            "Fixed step of the RK4 integrator of the 6-DoF vehicle model, seconds. 0 < step ≤ \
+             0.2, and navigation.sample_period is a whole number of steps."
+        }
         "initial" => {
             "Explicit initial state (Algorithm 1, lines 4–5). When absent, the USV starts at \
              the origin and the AUVs are drawn from `seed` within d_s of it (C1_6 at k = 0). \

@@ -494,6 +494,9 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         "(λ, merit-function penalty weight)",
     );
 
+    // What `shoal simulate` reads ([current], [navigation], [simulation]).
+    sim(&mut c, s);
+
     // Initial state.
     if let Some(init) = &s.initial {
         c.finite_arr(
@@ -532,5 +535,108 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         Ok(())
     } else {
         Err(c.out)
+    }
+}
+
+/// Whether `big` is a whole number (≥ 1) of `small`, to a relative 1e-9.
+pub fn whole_multiple(big: f64, small: f64) -> bool {
+    let r = big / small;
+    r.is_finite() && r >= 1.0 - 1e-9 && (r - r.round()).abs() <= 1e-9 * r.max(1.0)
+}
+
+fn sim(c: &mut Checker, s: &Scenario) {
+    let cur = &s.current;
+    if !(cur.velocity.iter().all(|v| v.is_finite())
+        && cur.velocity[0].hypot(cur.velocity[1]) <= 3.0)
+    {
+        c.push(
+            "current.velocity",
+            arr(&cur.velocity),
+            "must be [east, north] in m/s, finite, with a speed of at most 3 m/s".to_string(),
+            &[],
+        );
+    }
+    for (i, p) in cur.profile.iter().enumerate() {
+        let after = i == 0 || p[0] > cur.profile[i - 1][0];
+        if !(p[0].is_finite() && p[0] >= 0.0 && after && p[1].is_finite() && p[1].abs() <= 10.0) {
+            c.push(
+                &format!("current.profile[{i}]"),
+                arr(p),
+                "must be [depth, factor]: depth in metres ≥ 0 and greater than the previous \
+                 entry's, factor finite with |factor| ≤ 10"
+                    .to_string(),
+                &[],
+            );
+        }
+    }
+    let n = &s.navigation;
+    c.positive("navigation.sample_period", n.sample_period, "of seconds");
+    c.non_negative("navigation.dvl_noise", n.dvl_noise, "m/s");
+    c.float(
+        "navigation.dvl_scale",
+        n.dvl_scale,
+        (0.0..0.1).contains(&n.dvl_scale),
+        "must be a fraction with 0 ≤ value < 0.1 (1σ of the DVL's scale-factor error)",
+    );
+    c.positive(
+        "navigation.dvl_max_altitude",
+        n.dvl_max_altitude,
+        "of metres",
+    );
+    c.non_negative("navigation.heading_noise", n.heading_noise, "rad");
+    c.float(
+        "navigation.heading_bias",
+        n.heading_bias,
+        (0.0..0.5).contains(&n.heading_bias),
+        "must be a number of radians with 0 ≤ value < 0.5 (1σ of the compass bias)",
+    );
+    c.non_negative("navigation.depth_noise", n.depth_noise, "metres");
+    c.positive("navigation.gps_noise", n.gps_noise, "of metres");
+    c.positive("navigation.initial_noise", n.initial_noise, "of metres");
+    c.positive(
+        "navigation.acoustic_period",
+        n.acoustic_period,
+        "of seconds",
+    );
+    if n.sample_period > 0.0
+        && n.acoustic_period > 0.0
+        && !whole_multiple(n.acoustic_period, n.sample_period)
+    {
+        c.push(
+            "navigation.acoustic_period",
+            num(n.acoustic_period),
+            format!(
+                "must be a whole number of navigation.sample_period = {} s",
+                num(n.sample_period)
+            ),
+            &["navigation.sample_period"],
+        );
+    }
+    c.positive("navigation.sound_speed", n.sound_speed, "of m/s");
+    c.positive("navigation.range_noise", n.range_noise, "of metres");
+    c.float(
+        "navigation.packet_success",
+        n.packet_success,
+        n.packet_success > 0.0 && n.packet_success <= 1.0,
+        "must be a probability with 0 < value ≤ 1",
+    );
+    c.positive("navigation.range_falloff", n.range_falloff, "(an exponent)");
+    let step = s.simulation.step;
+    c.float(
+        "simulation.step",
+        step,
+        step > 0.0 && step <= 0.2,
+        "must be a number of seconds with 0 < step ≤ 0.2 (RK4 step of the 6-DoF model)",
+    );
+    if step > 0.0 && n.sample_period > 0.0 && !whole_multiple(n.sample_period, step) {
+        c.push(
+            "simulation.step",
+            num(step),
+            format!(
+                "must divide navigation.sample_period = {} s into a whole number of steps",
+                num(n.sample_period)
+            ),
+            &["navigation.sample_period"],
+        );
     }
 }

@@ -1,0 +1,196 @@
+//! `sim.json`, format `shoal-sim/1` (documented field by field in docs/simulation.md): what
+//! was flown, what was measured, what each estimator made of it, and the metrics.
+
+use super::estimate::Cov3;
+use super::measure::{Ping, SensorErrors};
+use super::policy::Policy;
+use crate::scenario::{Current, Navigation, Simulation};
+use serde::{Deserialize, Serialize};
+
+/// Value of the `format` field of every sim.json this version writes.
+pub const FORMAT: &str = "shoal-sim/1";
+
+/// A simulated mission as `shoal simulate` writes it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SimRecord {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Version of shoal that wrote it.
+    pub shoal_version: String,
+    /// The plan file flown.
+    pub plan: String,
+    /// Seed of every draw of the simulation (sensor errors, noise, packets).
+    pub seed: u64,
+    /// The `[current]` flown in.
+    pub current: Current,
+    /// The `[navigation]` sensors.
+    pub navigation: Navigation,
+    /// The `[simulation]` settings.
+    pub simulation: Simulation,
+    /// The plan's floor clearance ε (`auv.floor_clearance`), m.
+    pub floor_clearance: f64,
+    /// Number of AUVs; the USV is vehicle index `auvs` in links and pings.
+    pub auvs: usize,
+    /// Time of each epoch (acoustic cycle), s.
+    pub times: Vec<f64>,
+    /// The flight of the plan's final stages (Step 3, the chain).
+    pub flight: FlightRecord,
+    /// The flight of the plan's Step 1 paths (no chain), for comparison.
+    pub step1_flight: FlightRecord,
+    /// Each estimate: per policy and estimator on the final stages' flight, and the
+    /// `all_links` policy on Step 1's.
+    pub estimates: Vec<EstimateRecord>,
+    /// With `--runs R` > 1: each run's metrics and their mean and spread.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub monte_carlo: Option<super::montecarlo::MonteCarlo>,
+}
+
+/// One flight: the executed and planned positions at each epoch, what was measured, and how
+/// well the plan was kept.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FlightRecord {
+    /// `[auv][epoch]`: executed positions, m.
+    pub executed: Vec<Vec<[f64; 3]>>,
+    /// `[auv][epoch]`: planned positions at the same instants, m.
+    pub planned: Vec<Vec<[f64; 3]>>,
+    /// `[epoch]`: the USV's position, m.
+    pub usv: Vec<[f64; 3]>,
+    /// `[auv]`: the sensor errors drawn.
+    pub sensor_errors: Vec<SensorErrorsRecord>,
+    /// `[auv][epoch]`: dead-reckoning increments from epoch e to e + 1 (e = 0..E−1), m.
+    pub odometry: Vec<Vec<[f64; 3]>>,
+    /// `[auv][epoch]`: fraction of each increment's samples with DVL bottom lock.
+    pub bottom_lock: Vec<Vec<f64>>,
+    /// `[auv][epoch]`: measured z, m.
+    pub depth: Vec<Vec<f64>>,
+    /// `[epoch]`: the USV's GPS fixes, m.
+    pub gps: Vec<[f64; 2]>,
+    /// Every ping: epoch, pair, distance, line of sight, received, measured range.
+    pub pings: Vec<PingRecord>,
+    /// Tracking, floor clearance and connectivity of the executed path.
+    pub metrics: FlightMetrics,
+}
+
+/// One AUV's sensor errors.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SensorErrorsRecord {
+    /// DVL scale-factor error (fraction).
+    pub dvl_scale: f64,
+    /// Compass heading bias, rad.
+    pub heading_bias: f64,
+}
+
+impl From<SensorErrors> for SensorErrorsRecord {
+    fn from(e: SensorErrors) -> Self {
+        SensorErrorsRecord {
+            dvl_scale: e.dvl_scale,
+            heading_bias: e.heading_bias,
+        }
+    }
+}
+
+/// One ping, as written.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PingRecord {
+    /// Epoch index.
+    pub epoch: usize,
+    /// One end (vehicle index).
+    pub a: usize,
+    /// The other end (the USV is index `auvs`).
+    pub b: usize,
+    /// True distance, m.
+    pub distance: f64,
+    /// Line of sight on the executed positions.
+    pub line_of_sight: bool,
+    /// Received.
+    pub received: bool,
+    /// Measured range, m (meaningful when received).
+    pub range: f64,
+}
+
+impl From<&Ping> for PingRecord {
+    fn from(p: &Ping) -> Self {
+        PingRecord {
+            epoch: p.epoch,
+            a: p.a,
+            b: p.b,
+            distance: p.distance,
+            line_of_sight: p.line_of_sight,
+            received: p.received,
+            range: p.range,
+        }
+    }
+}
+
+/// How the executed path kept the plan.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FlightMetrics {
+    /// `[auv]`: RMS distance between executed and planned positions over the samples, m.
+    pub tracking_rms_m: Vec<f64>,
+    /// `[auv]`: largest such distance, m.
+    pub tracking_max_m: Vec<f64>,
+    /// Lowest height above the floor over every AUV and sample, m.
+    pub min_altitude_m: f64,
+    /// Samples (all AUVs) below the floor clearance ε (`auv.floor_clearance`).
+    pub samples_below_clearance: usize,
+    /// Samples (all AUVs) below the floor itself (a collision).
+    pub samples_below_floor: usize,
+    /// Samples (all AUVs) outside the grid.
+    pub samples_off_grid: usize,
+    /// Epochs at which every AUV has a path of links (in range and in line of sight, executed
+    /// positions) to the USV, as a fraction.
+    pub connected_fraction: f64,
+    /// Planned link-epochs (Step 2's links) in range and in line of sight, as a fraction (0
+    /// for Step 1's flight, which has no plan of links).
+    pub planned_links_up: f64,
+    /// Planned link-epochs whose ping was received, as a fraction.
+    pub planned_links_received: f64,
+    /// Distance each AUV travelled, m.
+    pub distance_m: Vec<f64>,
+}
+
+/// One estimator's run under one policy.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EstimateRecord {
+    /// Which ranges it used.
+    pub policy: Policy,
+    /// "factor_graph" (batch per window, all of the window's measurements) or "ekf" (causal).
+    pub estimator: String,
+    /// "final" (Step 3's plan) or "step1" (Step 1's paths).
+    pub flown: String,
+    /// Ranges used.
+    pub ranges_used: usize,
+    /// `[auv][epoch]`: estimated positions, m.
+    pub position: Vec<Vec<[f64; 3]>>,
+    /// `[auv][epoch]`: their covariances [xx, xy, xz, yy, yz, zz], m².
+    pub covariance: Vec<Vec<[f64; 6]>>,
+    /// Errors against the executed positions.
+    pub metrics: NavMetrics,
+}
+
+/// Position errors of one estimate (3-D distance to the executed position).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NavMetrics {
+    /// RMS over every AUV and epoch, m.
+    pub team_rmse_m: f64,
+    /// Largest over every AUV and epoch, m.
+    pub team_max_m: f64,
+    /// `[auv]`: RMS over the epochs, m.
+    pub rmse_m: Vec<f64>,
+    /// `[auv]`: largest over the epochs, m.
+    pub max_m: Vec<f64>,
+    /// `[epoch]`: RMS over the AUVs, m.
+    pub team_rmse_over_time_m: Vec<f64>,
+    /// `[window]`: RMS over the AUVs at each window's last epoch, m.
+    pub window_end_rmse_m: Vec<f64>,
+    /// The team's RMS error at the end of the mission as a percentage of the mean distance
+    /// travelled.
+    pub end_percent_of_distance: f64,
+    /// Mean normalised estimation error squared (3 for a consistent estimator).
+    pub mean_nees: f64,
+}
+
+/// [xx, xy, xz, yy, yz, zz] of a covariance.
+pub fn packed(c: &Cov3) -> [f64; 6] {
+    [c[0][0], c[0][1], c[0][2], c[1][1], c[1][2], c[2][2]]
+}

@@ -1,0 +1,132 @@
+//! The tables `shoal simulate` prints: how the plan was kept, and each estimate's errors.
+
+use super::record::{FlightRecord, SimRecord};
+use std::fmt::Write;
+
+fn flight_line(out: &mut String, name: &str, f: &FlightRecord, eps: f64) {
+    let m = &f.metrics;
+    let lo = m
+        .tracking_rms_m
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    let hi = m.tracking_rms_m.iter().copied().fold(0.0, f64::max);
+    let mx = m.tracking_max_m.iter().copied().fold(0.0, f64::max);
+    let _ = writeln!(
+        out,
+        "{name}: tracking RMS {lo:.1}–{hi:.1} m (max {mx:.1} m); lowest altitude {:.1} m ({} \
+         samples below ε = {eps} m, {} below the floor, {} off the grid); every AUV linked to \
+         the USV at {:.0} % of epochs{}",
+        m.min_altitude_m,
+        m.samples_below_clearance,
+        m.samples_below_floor,
+        m.samples_off_grid,
+        100.0 * m.connected_fraction,
+        if m.planned_links_up > 0.0 {
+            format!(
+                "; planned links in range and sight {:.0} %, received {:.0} %",
+                100.0 * m.planned_links_up,
+                100.0 * m.planned_links_received
+            )
+        } else {
+            String::new()
+        }
+    );
+}
+
+/// The summary of a simulation: the flights, then one row per estimate (with the Monte Carlo
+/// mean ± standard deviation when there were several runs).
+pub fn table(r: &SimRecord) -> String {
+    let mut out = String::new();
+    flight_line(
+        &mut out,
+        "plan (Step 3) flown",
+        &r.flight,
+        r.floor_clearance,
+    );
+    flight_line(
+        &mut out,
+        "Step 1's paths flown",
+        &r.step1_flight,
+        r.floor_clearance,
+    );
+    let _ = writeln!(out);
+    match &r.monte_carlo {
+        None => {
+            let _ = writeln!(
+                out,
+                "position error (3-D, m), seed {}: RMS and max over every AUV and epoch, RMS at \
+                 each window's end",
+                r.seed
+            );
+            let _ = writeln!(
+                out,
+                "{:<6} {:<15} {:<13} {:>7} {:>7} {:>7}  {:<24} {:>6} {:>6}",
+                "flown",
+                "policy",
+                "estimator",
+                "ranges",
+                "RMSE",
+                "max",
+                "window ends",
+                "%dist",
+                "NEES"
+            );
+            for e in &r.estimates {
+                let ends: Vec<String> = e
+                    .metrics
+                    .window_end_rmse_m
+                    .iter()
+                    .map(|x| format!("{x:.1}"))
+                    .collect();
+                let _ = writeln!(
+                    out,
+                    "{:<6} {:<15} {:<13} {:>7} {:>7.2} {:>7.2}  {:<24} {:>6.2} {:>6.1}",
+                    e.flown,
+                    e.policy.name(),
+                    e.estimator,
+                    e.ranges_used,
+                    e.metrics.team_rmse_m,
+                    e.metrics.team_max_m,
+                    ends.join(" "),
+                    e.metrics.end_percent_of_distance,
+                    e.metrics.mean_nees
+                );
+            }
+        }
+        Some(mc) => {
+            let _ = writeln!(
+                out,
+                "position error (3-D, m) over {} runs (seeds {}–{}): mean ± standard deviation",
+                mc.runs,
+                r.seed,
+                r.seed + mc.runs as u64 - 1
+            );
+            let _ = writeln!(
+                out,
+                "{:<6} {:<15} {:<13} {:>14} {:>14} {:>14} {:>6}",
+                "flown", "policy", "estimator", "RMSE", "max", "last window end", "NEES"
+            );
+            for s in &mc.summary {
+                let pm = |x: &super::montecarlo::Stat| format!("{:.2} ± {:.2}", x.mean, x.std);
+                let last = s
+                    .window_end_rmse_m
+                    .last()
+                    .map(pm)
+                    .unwrap_or_else(|| "-".into());
+                let _ = writeln!(
+                    out,
+                    "{:<6} {:<15} {:<13} {:>14} {:>14} {:>14} {:>6.1}",
+                    s.flown,
+                    s.policy.name(),
+                    s.estimator,
+                    pm(&s.team_rmse_m),
+                    pm(&s.team_max_m),
+                    last,
+                    s.mean_nees.mean
+                );
+            }
+        }
+    }
+    out
+}

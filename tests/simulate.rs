@@ -1,0 +1,143 @@
+//! `shoal simulate`: flying the default plan, measuring and estimating it.
+
+use shoal::sim::policy::Policy;
+use shoal::sim::record::{EstimateRecord, SimRecord};
+use shoal::sim::{run, simulate, SimError};
+use shoal::{Planner, Scenario, Seafloor};
+use std::sync::OnceLock;
+
+/// The default scenario's plan and floor, made once for every test.
+fn default_plan() -> &'static (shoal::Plan, Seafloor) {
+    static PLAN: OnceLock<(shoal::Plan, Seafloor)> = OnceLock::new();
+    PLAN.get_or_init(|| {
+        let s = Scenario::default();
+        let floor = Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();
+        let plan = Planner::new(&s, &floor).run().unwrap();
+        (plan, floor)
+    })
+}
+
+fn default_sim() -> &'static SimRecord {
+    static SIM: OnceLock<SimRecord> = OnceLock::new();
+    SIM.get_or_init(|| {
+        let (plan, floor) = default_plan();
+        simulate(plan, "plan.json", floor, 1).unwrap()
+    })
+}
+
+fn estimate<'a>(
+    r: &'a SimRecord,
+    flown: &str,
+    policy: Policy,
+    estimator: &str,
+) -> &'a EstimateRecord {
+    r.estimates
+        .iter()
+        .find(|e| e.flown == flown && e.policy == policy && e.estimator == estimator)
+        .unwrap()
+}
+
+#[test]
+fn the_default_plan_is_flown_close_to_its_waypoints_and_off_the_floor() {
+    let m = &default_sim().flight.metrics;
+    for (n, rms) in m.tracking_rms_m.iter().enumerate() {
+        assert!(*rms < 5.0, "AUV {n} tracked its plan to {rms} m RMS");
+    }
+    assert_eq!(
+        m.samples_below_floor, 0,
+        "an executed path went through the floor"
+    );
+    assert_eq!(m.samples_off_grid, 0);
+}
+
+#[test]
+fn the_same_seed_gives_the_same_simulation_byte_for_byte() {
+    let (plan, floor) = default_plan();
+    let again = simulate(plan, "plan.json", floor, 1).unwrap();
+    assert_eq!(
+        serde_json::to_vec(default_sim()).unwrap(),
+        serde_json::to_vec(&again).unwrap()
+    );
+    let other = simulate(plan, "plan.json", floor, 2).unwrap();
+    assert_ne!(default_sim().flight.depth, other.flight.depth);
+    // the flight itself does not depend on the seed
+    assert_eq!(default_sim().flight.executed, other.flight.executed);
+}
+
+#[test]
+fn dead_reckoning_drifts_by_a_few_percent_of_the_distance_travelled() {
+    let dr = estimate(default_sim(), "final", Policy::DeadReckoning, "ekf");
+    let pct = dr.metrics.end_percent_of_distance;
+    // a 1° compass bias alone is 1.7 % of the distance, across the track
+    assert!(
+        (0.3..6.0).contains(&pct),
+        "dead reckoning drifted {pct} % of distance"
+    );
+    // and its error grows: the last epoch's is larger than the first quarter's
+    let e = &dr.metrics.team_rmse_over_time_m;
+    assert!(e[e.len() - 1] > e[e.len() / 4]);
+}
+
+#[test]
+fn ranges_to_the_team_bound_the_error_dead_reckoning_lets_grow() {
+    let r = default_sim();
+    let dr = estimate(r, "final", Policy::DeadReckoning, "factor_graph");
+    for policy in [Policy::A2u, Policy::Chain, Policy::AllLinks] {
+        let e = estimate(r, "final", policy, "factor_graph");
+        assert!(e.ranges_used > 0, "{policy:?} used no range");
+        assert!(
+            e.metrics.team_rmse_m < dr.metrics.team_rmse_m,
+            "{policy:?}: {} m against dead reckoning's {} m",
+            e.metrics.team_rmse_m,
+            dr.metrics.team_rmse_m
+        );
+    }
+    // the policies use nested sets of ranges
+    let used = |p| estimate(r, "final", p, "ekf").ranges_used;
+    assert!(used(Policy::Chain) <= used(Policy::AllLinks));
+    assert!(used(Policy::A2u) <= used(Policy::AllLinks));
+}
+
+#[test]
+fn simulate_changes_only_its_own_keys() {
+    let (plan, _) = default_plan();
+    let e = run::with_settings(plan, "plan.json", &["team.auvs=7".into()]).unwrap_err();
+    assert!(matches!(e, SimError::NotSimKey(_)), "{e}");
+    assert!(e.to_string().contains("team.auvs=7"), "{e}");
+    let e =
+        run::with_settings(plan, "plan.json", &["navigation.range_noise=-1".into()]).unwrap_err();
+    assert!(e.to_string().contains("navigation.range_noise"), "{e}");
+    let p = run::with_settings(plan, "plan.json", &["current.velocity=[0.3, 0]".into()]).unwrap();
+    assert_eq!(p.scenario.current.velocity, [0.3, 0.0]);
+}
+
+#[test]
+fn an_acoustic_cycle_that_does_not_divide_the_step_is_refused_by_name() {
+    let (plan, floor) = default_plan();
+    let p =
+        run::with_settings(plan, "plan.json", &["navigation.acoustic_period=30".into()]).unwrap();
+    let e = simulate(&p, "plan.json", floor, 1).unwrap_err();
+    assert!(e.to_string().contains("navigation.acoustic_period"), "{e}");
+}
+
+#[test]
+fn the_cli_writes_sim_json_and_prints_the_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let plan_path = dir.path().join("plan.json");
+    shoal::output::write_plan(&default_plan().0, &plan_path).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_shoal"))
+        .args(["simulate", plan_path.to_str().unwrap(), "--seed", "3"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("dead_reckoning"), "{stdout}");
+    let r: SimRecord =
+        serde_json::from_slice(&std::fs::read(dir.path().join("sim.json")).unwrap()).unwrap();
+    assert_eq!(r.seed, 3);
+    assert_eq!(r.format, shoal::sim::record::FORMAT);
+}
