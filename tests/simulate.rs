@@ -141,3 +141,70 @@ fn the_cli_writes_sim_json_and_prints_the_errors() {
     assert_eq!(r.seed, 3);
     assert_eq!(r.format, shoal::sim::record::FORMAT);
 }
+
+#[test]
+fn estimating_the_biases_keeps_dead_reckoning_consistent() {
+    let (plan, floor) = default_plan();
+    let nees = |estimate_biases: bool| {
+        let p = run::with_settings(
+            plan,
+            "plan.json",
+            &[format!("navigation.estimate_biases={estimate_biases}")],
+        )
+        .unwrap();
+        let r = simulate(&p, "plan.json", floor, 1).unwrap();
+        estimate(&r, "final", Policy::DeadReckoning, "factor_graph")
+            .metrics
+            .mean_nees
+    };
+    // 3 for a consistent 3-D estimate; the biases taken for noise drawn anew each cycle make
+    // dead reckoning's covariance far too small over a window
+    let (with, without) = (nees(true), nees(false));
+    assert!(with < 10.0, "mean NEES {with} with the biases estimated");
+    assert!(
+        without > 3.0 * with,
+        "mean NEES {without} without, {with} with"
+    );
+}
+
+#[test]
+fn regression_window_boundaries_used_their_measurements_twice() {
+    let s = shoal::scenario::default_with(&["windows=2".into()]).unwrap();
+    let floor = Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();
+    let plan = Planner::new(&s, &floor).run().unwrap();
+    let r = simulate(&plan, "plan.json", &floor, 1).unwrap();
+    // the factor graph solves window by window; the epoch two windows share is measured once
+    for policy in Policy::EVERY {
+        assert_eq!(
+            estimate(&r, "final", policy, "factor_graph").ranges_used,
+            estimate(&r, "final", policy, "ekf").ranges_used,
+            "{policy:?}"
+        );
+    }
+    assert_eq!(
+        estimate(&r, "final", Policy::Chain, "ekf")
+            .metrics
+            .window_end_rmse_m
+            .len(),
+        2
+    );
+}
+
+#[test]
+fn monte_carlo_summarises_every_estimate_over_the_runs() {
+    let (plan, floor) = default_plan();
+    let r = shoal::sim::monte_carlo(plan, "plan.json", floor, 5, 3).unwrap();
+    let mc = r.monte_carlo.as_ref().unwrap();
+    assert_eq!(mc.runs, 3);
+    assert_eq!(mc.summary.len(), r.estimates.len());
+    assert_eq!(
+        mc.each.iter().map(|x| x.seed).collect::<Vec<_>>(),
+        [5, 6, 7]
+    );
+    for s in &mc.summary {
+        let t = s.team_rmse_m;
+        assert!(t.min <= t.mean && t.mean <= t.max && t.std >= 0.0, "{s:?}");
+    }
+    // the record is the first run's
+    assert_eq!(r.seed, 5);
+}

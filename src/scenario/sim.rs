@@ -63,6 +63,9 @@ pub struct Navigation {
     /// How fast reception falls with range d: p(d) = packet_success · (1 − (d / d_s)^falloff)
     /// below the sonar range d_s (`acoustic.sonar_range`), 0 beyond it or without line of sight.
     pub range_falloff: f64,
+    /// Whether the estimators estimate each AUV's compass bias and DVL scale error (unknowns
+    /// with the priors above) or treat them as noise drawn anew each acoustic cycle.
+    pub estimate_biases: bool,
 }
 
 impl Default for Navigation {
@@ -98,6 +101,7 @@ impl Default for Navigation {
             // ours: 90 % of packets at short range, 74 % at 0.8·d_s, 47 % at 0.9·d_s
             packet_success: 0.9,
             range_falloff: 6.0,
+            estimate_biases: true,
         }
     }
 }

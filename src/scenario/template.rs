@@ -356,6 +356,12 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              acoustic.sonar_range, and 0 beyond it or without line of sight (the floor's segment \
              query on the executed positions). > 0."
         }
+        "navigation.estimate_biases" => {
+            "Whether the estimators estimate each AUV's compass bias and DVL scale error as \
+             unknowns (true: with the priors heading_bias and dvl_scale; an estimate that stays \
+             consistent over a mission) or treat them as noise drawn anew each acoustic cycle \
+             (false: overconfident over many cycles)."
+        }
         "simulation" => "How `shoal simulate` flies a plan (ours).",
         "simulation.step" => {
             "Fixed step of the RK4 integrator of the 6-DoF vehicle model, seconds. 0 < step ≤ \

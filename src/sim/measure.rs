@@ -25,8 +25,12 @@ pub struct SensorErrors {
 pub struct Increment {
     /// Measured displacement, m.
     pub delta: [f64; 3],
-    /// Its covariance as the estimators are told it, m².
+    /// Its covariance when the estimators do not estimate the biases: the white noise plus
+    /// the biases as if drawn anew each cycle, m².
     pub cov: Cov3,
+    /// Its white noise alone (DVL and heading noise), m²: the covariance when the estimators
+    /// estimate each AUV's biases.
+    pub white: Cov3,
     /// Fraction of the interval's samples with DVL bottom lock.
     pub bottom_lock: f64,
 }
@@ -158,7 +162,8 @@ pub fn measure(
                 }
                 let locked = lock[i0..=i1].iter().filter(|&&l| l).count();
                 Increment {
-                    cov: increment_cov(d, per, nav, ts),
+                    cov: increment_cov(d, per, nav, ts, true),
+                    white: increment_cov(d, per, nav, ts, false),
                     delta: d,
                     bottom_lock: locked as f64 / (i1 - i0 + 1) as f64,
                 }
@@ -238,11 +243,13 @@ pub fn measure(
 }
 
 /// The covariance the estimators are told for an increment `d` integrated over `m` samples of
-/// `ts` seconds: the white noise of DVL and heading, plus the biases (scale along the track,
-/// heading across it) as if they were drawn anew each cycle. The biases are in fact constant
-/// over the mission, so this understates the growth of dead reckoning's error over many cycles
-/// (docs/simulation.md).
-fn increment_cov(d: [f64; 3], m: usize, nav: &Navigation, ts: f64) -> Cov3 {
+/// `ts` seconds: the white noise of DVL and heading, plus, when `biases`, the biases (scale
+/// along the track, heading across it) as if they were drawn anew each cycle. The biases are in
+/// fact constant over the mission, so that understates the growth of dead reckoning's error
+/// over many cycles; the estimators estimate them instead unless
+/// `navigation.estimate_biases = false` (docs/simulation.md).
+fn increment_cov(d: [f64; 3], m: usize, nav: &Navigation, ts: f64, biases: bool) -> Cov3 {
+    let b = if biases { 1.0 } else { 0.0 };
     let l = d[0].hypot(d[1]);
     let t = if l > 1e-9 {
         [d[0] / l, d[1] / l]
@@ -253,10 +260,10 @@ fn increment_cov(d: [f64; 3], m: usize, nav: &Navigation, ts: f64) -> Cov3 {
     let span = m as f64 * ts;
     let white = m as f64 * ts * ts * nav.dvl_noise.powi(2);
     let speed = l / span;
-    let along = white + (nav.dvl_scale * l).powi(2);
+    let along = white + b * (nav.dvl_scale * l).powi(2);
     let across = white
         + m as f64 * (ts * speed * nav.heading_noise).powi(2)
-        + (nav.heading_bias * l).powi(2);
+        + b * (nav.heading_bias * l).powi(2);
     let floor = 1e-6;
     let mut c = [[0.0; 3]; 3];
     for i in 0..2 {
@@ -265,6 +272,6 @@ fn increment_cov(d: [f64; 3], m: usize, nav: &Navigation, ts: f64) -> Cov3 {
         }
         c[i][i] += floor;
     }
-    c[2][2] = white + (nav.dvl_scale * d[2]).powi(2) + floor;
+    c[2][2] = white + b * (nav.dvl_scale * d[2]).powi(2) + floor;
     c
 }

@@ -1,7 +1,7 @@
 //! Navigation policies: which of a flight's measurements each estimator may use. All of them
 //! see the same dead reckoning, depths and GPS fixes; they differ in the acoustic ranges.
 
-use super::estimate::{Cov3, Depth, Node, Odometry, Prior, Problem, Range};
+use super::estimate::{Bias, BiasEstimate, Cov3, Depth, Node, Odometry, Prior, Problem, Range};
 use super::measure::{Measurements, Ping};
 use crate::scenario::Navigation;
 use serde::{Deserialize, Serialize};
@@ -63,10 +63,25 @@ fn diag(s: [f64; 3]) -> Cov3 {
 /// Standard deviation of the USV's z (it is on the surface), m.
 const USV_Z_SIGMA: f64 = 0.01;
 
+/// What the estimators know of each vehicle where a stretch of epochs starts: its position
+/// and, when the biases are estimated, each AUV's biases [β, s], each as a mean and a
+/// covariance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Start {
+    /// Whether the stretch continues an earlier one whose estimate of this epoch `positions`
+    /// are: then the epoch's own measurements are not used again.
+    pub continues: bool,
+    /// `[vehicle]`: position mean and covariance (the AUVs; the USV too when `continues`).
+    pub positions: Vec<([f64; 3], Cov3)>,
+    /// `[auv]`: bias mean and covariance (None: the biases are not estimated).
+    pub biases: Vec<Option<BiasEstimate>>,
+}
+
 /// The estimation problem of `policy` over epochs `first..=last` of `m` (renumbered from 0):
-/// the AUVs' start priors `start` (one per AUV, at `first`), the USV's GPS fixes, every AUV's
-/// dead reckoning and depth, and the ranges the policy uses (`planned(e)`: the planned links at
-/// epoch e, pairs a < b).
+/// the AUVs' start priors `start` (at `first`), the USV's GPS fixes, every AUV's dead
+/// reckoning and depth, and the ranges the policy uses (`planned(e)`: the planned links at
+/// epoch e, pairs a < b). With bias priors in `start`, each AUV's biases are unknowns and its
+/// increments carry their white noise alone.
 pub fn problem(
     m: &Measurements,
     nav: &Navigation,
@@ -74,7 +89,7 @@ pub fn problem(
     planned: &dyn Fn(usize) -> Vec<(usize, usize)>,
     first: usize,
     last: usize,
-    start: &[(/* mean */ [f64; 3], Cov3)],
+    start: &Start,
 ) -> Problem {
     let n = m.errors.len();
     let usv = n;
@@ -83,7 +98,7 @@ pub fn problem(
         epochs: last - first + 1,
         ..Problem::default()
     };
-    for (v, (mean, cov)) in start.iter().enumerate() {
+    for (v, (mean, cov)) in start.positions.iter().enumerate() {
         p.priors.push(Prior {
             node: Node {
                 vehicle: v,
@@ -93,39 +108,59 @@ pub fn problem(
             cov: *cov,
         });
     }
+    for (v, b) in start.biases.iter().enumerate() {
+        if let Some((mean, cov)) = b {
+            p.biases.push(Bias {
+                vehicle: v,
+                mean: *mean,
+                cov: *cov,
+            });
+        }
+    }
+    // a stretch that continues another starts from that stretch's estimate of its first
+    // epoch, which already holds that epoch's fixes, depths and ranges: they are not used twice
+    let fresh = |e: usize| e > first || !start.continues;
     for e in first..=last {
         let g = m.gps[e];
-        p.priors.push(Prior {
-            node: Node {
-                vehicle: usv,
-                epoch: e - first,
-            },
-            mean: [g[0], g[1], 0.0],
-            cov: diag([nav.gps_noise, nav.gps_noise, USV_Z_SIGMA]),
-        });
-        for v in 0..n {
-            p.depths.push(Depth {
+        if fresh(e) {
+            p.priors.push(Prior {
                 node: Node {
-                    vehicle: v,
+                    vehicle: usv,
                     epoch: e - first,
                 },
-                z: m.depth[v][e],
-                sigma: nav.depth_noise.max(1e-3),
+                mean: [g[0], g[1], 0.0],
+                cov: diag([nav.gps_noise, nav.gps_noise, USV_Z_SIGMA]),
             });
+        }
+        for v in 0..n {
+            if fresh(e) {
+                p.depths.push(Depth {
+                    node: Node {
+                        vehicle: v,
+                        epoch: e - first,
+                    },
+                    z: m.depth[v][e],
+                    sigma: nav.depth_noise.max(1e-3),
+                });
+            }
             if e < last {
                 let inc = &m.odometry[v][e];
                 p.odometry.push(Odometry {
                     vehicle: v,
                     epoch: e - first,
                     delta: inc.delta,
-                    cov: inc.cov,
+                    cov: if start.biases[v].is_some() {
+                        inc.white
+                    } else {
+                        inc.cov
+                    },
                 });
             }
         }
     }
     if policy != Policy::DeadReckoning {
         let per_epoch = (n + 1) * n / 2;
-        for e in first..=last {
+        for e in (first..=last).filter(|&e| fresh(e)) {
             let links = planned(e);
             for ping in &m.pings[e * per_epoch..(e + 1) * per_epoch] {
                 if policy.uses(ping, &links, usv) {
@@ -148,8 +183,23 @@ pub fn problem(
     p
 }
 
-/// The start priors of window 0: each AUV's fix before the dive.
-pub fn initial_priors(m: &Measurements, nav: &Navigation) -> Vec<([f64; 3], Cov3)> {
+/// What the estimators know at the mission's start: each AUV's fix before the dive and, when
+/// `navigation.estimate_biases`, the biases' prior (zero mean, the sensors' 1σ).
+pub fn initial_start(m: &Measurements, nav: &Navigation) -> Start {
     let s = nav.initial_noise;
-    m.initial.iter().map(|p| (*p, diag([s, s, s]))).collect()
+    // a prior standard deviation the estimators accept even for ideal sensors
+    let beta = nav.heading_bias.max(1e-6);
+    let scale = nav.dvl_scale.max(1e-6);
+    Start {
+        continues: false,
+        positions: m.initial.iter().map(|p| (*p, diag([s, s, s]))).collect(),
+        biases: m
+            .initial
+            .iter()
+            .map(|_| {
+                nav.estimate_biases
+                    .then_some(([0.0, 0.0], [[beta * beta, 0.0], [0.0, scale * scale]]))
+            })
+            .collect(),
+    }
 }

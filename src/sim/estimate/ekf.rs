@@ -1,19 +1,26 @@
 //! The causal estimate: an extended Kalman filter over all vehicles' positions at once, what
 //! the team knows on board at each epoch from the measurements up to and including it.
 //!
-//! State: the 3·V positions of the current epoch, covariance P dense (V ≤ 65 gives ≤ 195
-//! unknowns; at most [`MAX_VEHICLES`] vehicles). At epoch 0 each vehicle starts from its first
-//! prior there. At e > 0 each vehicle is predicted with its odometry e − 1 → e (mean += delta,
-//! P_vv += cov; several increments for the same interval are first fused in information form,
-//! as the smoother's factors would be), or, without odometry, restarted from its first prior at
-//! e (its block of P replaced, its cross-covariances zeroed). Then the remaining priors at e, the
+//! State: the 3·V positions of the current epoch, then b = [β, s] of each vehicle with a
+//! [`Bias`](super::Bias) (in vehicle order, from its prior; constant, no process noise),
+//! covariance P dense (V ≤ 65 gives ≤ 325 unknowns; at most [`MAX_VEHICLES`] vehicles). At
+//! epoch 0 each vehicle starts from its first prior there. At e > 0 each vehicle is predicted
+//! with its odometry e − 1 → e (several increments for the same interval are first fused in
+//! information form, as the smoother's factors would be): without a bias, mean += delta and
+//! P_vv += cov; with one, mean += g(b̂, delta) and P ← F P Fᵀ + G cov Gᵀ, F the identity but for
+//! ∂g/∂b in the vehicle's rows and its bias's columns, G = ∂g/∂delta (`bias.rs`). Without
+//! odometry a vehicle is restarted from its first prior at e (its block of P replaced, its
+//! cross-covariances, also with its bias, zeroed). Then the remaining priors at e, the
 //! depths at e and the ranges with both ends at e update the state, one scalar at a time (a
 //! prior's three components after whitening by its Cholesky factor), in the Joseph form,
 //! linearised at the current mean; a range whose two estimates coincide has no direction and is
 //! skipped. The estimate of epoch e is recorded after its updates.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use std::ops::AddAssign;
 
+use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix3x2, Vector3};
+
+use super::bias::{g, prediction};
 use super::validate::{cov_factor, Checked};
 use super::{Cov3, Estimate, EstimateError, Problem};
 
@@ -55,6 +62,15 @@ impl Ekf {
         a.ger(-1.0, &ah, &k, 1.0);
         a.ger(r, &k, &k, 1.0);
         self.p = (&a + a.transpose()) * 0.5;
+    }
+
+    /// P ← F P Fᵀ with F = I + (`jb` at rows `r..r+3`, columns `c..c+2`): the rows of a vehicle
+    /// whose prediction depends on the bias at `c`, then its columns.
+    fn propagate_bias(&mut self, r: usize, c: usize, jb: &Matrix3x2<f64>) {
+        let rows = jb * self.p.rows(c, 2);
+        self.p.rows_mut(r, 3).add_assign(&rows);
+        let cols = self.p.columns(c, 2) * jb.transpose();
+        self.p.columns_mut(r, 3).add_assign(&cols);
     }
 
     fn block(&self, v: usize) -> Cov3 {
@@ -99,12 +115,28 @@ pub(super) fn filter(problem: &Problem, checked: &Checked) -> Result<Estimate, E
         depths_at[d.node.epoch].push(i);
     }
 
-    let n = 3 * vehicles;
+    let mut bias_col = vec![None; vehicles];
+    let mut n = 3 * vehicles;
+    for (v, col) in bias_col.iter_mut().enumerate() {
+        if checked.bias[v].is_some() {
+            *col = Some(n);
+            n += 2;
+        }
+    }
     let mut ekf = Ekf {
         x: DVector::zeros(n),
         p: DMatrix::zeros(n, n),
         cost: 0.0,
     };
+    for (v, col) in bias_col.iter().enumerate() {
+        if let (Some(c), Some(i)) = (*col, checked.bias[v]) {
+            let b = &problem.biases[i];
+            ekf.x[c] = b.mean[0];
+            ekf.x[c + 1] = b.mean[1];
+            let cov = Matrix2::from_fn(|i, j| 0.5 * (b.cov[i][j] + b.cov[j][i]));
+            ekf.p.view_mut((c, c), (2, 2)).copy_from(&cov);
+        }
+    }
     let mut position = vec![Vec::with_capacity(epochs); vehicles];
     let mut covariance = vec![Vec::with_capacity(epochs); vehicles];
     let mut updates = Vec::new();
@@ -115,6 +147,16 @@ pub(super) fn filter(problem: &Problem, checked: &Checked) -> Result<Estimate, E
             let into = &checked.odometry_into[k];
             if e > 0 && !into.is_empty() {
                 let (delta, cov) = fuse(problem, into)?;
+                let (delta, cov) = match bias_col[v] {
+                    None => (delta, cov),
+                    Some(c) => {
+                        let b = [ekf.x[c], ekf.x[c + 1]];
+                        let (jb, jd) = prediction(b, delta);
+                        ekf.propagate_bias(3 * v, c, &jb);
+                        let q = jd * cov * jd.transpose();
+                        (g(b, delta), (q + q.transpose()) * 0.5)
+                    }
+                };
                 for i in 0..3 {
                     ekf.x[3 * v + i] += delta[i];
                 }
@@ -187,11 +229,24 @@ pub(super) fn filter(problem: &Problem, checked: &Checked) -> Result<Estimate, E
             covariance[v].push(ekf.block(v));
         }
     }
+    let bias = bias_col
+        .iter()
+        .map(|col| {
+            col.map(|c| {
+                let p = |i: usize, j: usize| ekf.p[(c + i, c + j)];
+                (
+                    [ekf.x[c], ekf.x[c + 1]],
+                    [[p(0, 0), p(0, 1)], [p(1, 0), p(1, 1)]],
+                )
+            })
+        })
+        .collect();
     Ok(Estimate {
         position,
         covariance,
         iterations: 0,
         cost: ekf.cost,
+        bias,
     })
 }
 

@@ -1,10 +1,11 @@
 //! The batch estimate (smoother): one factor graph over every node and every measurement, past
 //! and future, solved by Levenberg–Marquardt, with each node's marginal covariance.
 //!
-//! Built on factrs: its variables and residuals are typed (a `VectorVar3` per node; prior,
-//! between, depth and range residuals), it solves by Levenberg–Marquardt over faer's sparse
-//! Cholesky, it differentiates custom residuals (depth, range) by forward-mode dual numbers
-//! instead of hand-written Jacobians, and its API (`Values`, `Graph`, `PriorResidual`,
+//! Built on factrs: its variables and residuals are typed (a `VectorVar3` per node, a
+//! `VectorVar2` per vehicle with biases; prior, between, biased odometry, depth and range
+//! residuals), it solves by Levenberg–Marquardt over faer's sparse Cholesky, it differentiates
+//! custom residuals (depth, range in `factors.rs`; biased odometry in `bias.rs`) by forward-mode
+//! dual numbers instead of hand-written Jacobians, and its API (`Values`, `Graph`, `PriorResidual`,
 //! `BetweenResidual`, noise models, `LevenMarquardt`) is GTSAM's, which navigation researchers
 //! know.
 //!
@@ -33,80 +34,45 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use factrs::{
     assign_symbols,
     containers::{FactorBuilder, Graph, Values, ValuesOrder},
-    linalg::{vectorx, Const, DiffResult, ForwardProp, Numeric, VectorX},
+    linalg::{DiffResult, VectorX},
+    linear::LinearValues,
     noise::GaussianNoise,
     optimizers::{LevenMarquardt, LevenParams, OptError, Optimizer},
-    residuals::{BetweenResidual, PriorResidual, Residual1, Residual2},
-    variables::VectorVar3,
+    residuals::{BetweenResidual, PriorResidual},
+    variables::{VectorVar2, VectorVar3},
 };
 
+use super::bias::{g, BiasedOdometry};
+use super::factors::{noise2, noise3, DepthResidual, RangeResidual};
 use super::marginal::Cholesky;
-use super::validate::{cov_factor, index, Checked};
-use super::{Cov3, Estimate, EstimateError, Problem, SmoothOptions};
+use super::validate::{index, Checked};
+use super::{Estimate, EstimateError, Problem, SmoothOptions};
 
-assign_symbols!(X: VectorVar3);
-
-/// A depth gauge: r = z − z_measured.
-#[derive(Clone, Debug)]
-struct DepthResidual {
-    z: f64,
-}
-
-#[factrs::mark]
-impl Residual1 for DepthResidual {
-    type Differ = ForwardProp<Const<3>>;
-    type V1 = VectorVar3;
-    type DimIn = Const<3>;
-    type DimOut = Const<1>;
-
-    fn residual1<T: Numeric>(&self, p: VectorVar3<T>) -> VectorX<T> {
-        vectorx![p.0[2] - T::from(self.z)]
-    }
-}
-
-/// The square of the length below which a range's Jacobian fades to zero, m².
-const RANGE_EPS2: f64 = 1e-12;
-
-/// An acoustic range: r = √(‖a − b‖² + ε²) − range, ε = 1 µm. The ε keeps the autodiff
-/// derivative finite (zero) when the two positions coincide, where ‖·‖ has none; it biases a
-/// range of d metres by ε²/2d, 5·10⁻¹³ m at 1 m.
-#[derive(Clone, Debug)]
-struct RangeResidual {
-    range: f64,
-}
-
-#[factrs::mark]
-impl Residual2 for RangeResidual {
-    type Differ = ForwardProp<Const<6>>;
-    type V1 = VectorVar3;
-    type V2 = VectorVar3;
-    type DimIn = Const<6>;
-    type DimOut = Const<1>;
-
-    fn residual2<T: Numeric>(&self, a: VectorVar3<T>, b: VectorVar3<T>) -> VectorX<T> {
-        let d = a.0 - b.0;
-        vectorx![(d.norm_squared() + T::from(RANGE_EPS2)).sqrt() - T::from(self.range)]
-    }
-}
-
-/// The whitening of a validated covariance: R = L⁻¹ with L Lᵀ = cov, so RᵀR = cov⁻¹.
-fn noise3(cov: &Cov3) -> Result<GaussianNoise<3>, EstimateError> {
-    let l = cov_factor(cov).map_err(|why| EstimateError::Solver(format!("covariance: {why}")))?;
-    let r = l
-        .try_inverse()
-        .ok_or_else(|| EstimateError::Solver("covariance inverse".into()))?;
-    Ok(GaussianNoise::<3>::from_matrix_sqrt_inf(r))
-}
+assign_symbols!(X: VectorVar3; B: VectorVar2);
 
 fn key(k: usize) -> X {
     // validate() bounds the node count by u32::MAX / 3.
     X(k as u32)
 }
 
-fn build(problem: &Problem) -> Result<Graph, EstimateError> {
+/// The bias variable of vehicle `v` (v < nodes ≤ u32::MAX / 3 in a non-empty problem).
+fn bias_key(v: usize) -> B {
+    B(v as u32)
+}
+
+fn build(problem: &Problem, checked: &Checked) -> Result<Graph, EstimateError> {
     let mut graph = Graph::with_capacity(
-        problem.priors.len() + problem.odometry.len() + problem.depths.len() + problem.ranges.len(),
+        problem.priors.len()
+            + problem.odometry.len()
+            + problem.depths.len()
+            + problem.ranges.len()
+            + problem.biases.len(),
     );
+    for b in &problem.biases {
+        let res = PriorResidual::new(VectorVar2::new(b.mean[0], b.mean[1]));
+        let f = FactorBuilder::<2>::new1(res, bias_key(b.vehicle)).noise(noise2(&b.cov)?);
+        graph.add_factor(f.build());
+    }
     for p in &problem.priors {
         let [x, y, z] = p.mean;
         let res = PriorResidual::new(VectorVar3::new(x, y, z));
@@ -119,10 +85,15 @@ fn build(problem: &Problem) -> Result<Graph, EstimateError> {
     }
     for o in &problem.odometry {
         let [x, y, z] = o.delta;
-        let res = BetweenResidual::new(VectorVar3::new(x, y, z));
         let k0 = o.vehicle * problem.epochs + o.epoch;
-        let f = FactorBuilder::<3>::new2(res, key(k0), key(k0 + 1)).noise(noise3(&o.cov)?);
-        graph.add_factor(f.build());
+        let f = if checked.bias[o.vehicle].is_some() {
+            let res = BiasedOdometry { delta: o.delta };
+            FactorBuilder::<3>::new3(res, key(k0), key(k0 + 1), bias_key(o.vehicle))
+        } else {
+            let res = BetweenResidual::new(VectorVar3::new(x, y, z));
+            FactorBuilder::<3>::new2(res, key(k0), key(k0 + 1))
+        };
+        graph.add_factor(f.noise(noise3(&o.cov)?).build());
     }
     for d in &problem.depths {
         let res = DepthResidual { z: d.z };
@@ -143,6 +114,7 @@ fn build(problem: &Problem) -> Result<Graph, EstimateError> {
 pub(super) fn dead_reckoning(problem: &Problem, checked: &Checked) -> Vec<Vec<[f64; 3]>> {
     let mut out: Vec<Vec<[f64; 3]>> = vec![Vec::with_capacity(problem.epochs); problem.vehicles];
     for (v, track) in out.iter_mut().enumerate() {
+        let bias = checked.bias[v].map(|i| problem.biases[i].mean);
         for e in 0..problem.epochs {
             let k = v * problem.epochs + e;
             let p = match (checked.priors[k].first(), track.last()) {
@@ -152,6 +124,7 @@ pub(super) fn dead_reckoning(problem: &Problem, checked: &Checked) -> Vec<Vec<[f
                     let d = checked.odometry_into[k]
                         .first()
                         .map_or([0.0; 3], |&i| problem.odometry[i].delta);
+                    let d = bias.map_or(d, |b| g(b, d));
                     [prev[0] + d[0], prev[1] + d[1], prev[2] + d[2]]
                 }
                 (None, None) => [0.0; 3],
@@ -172,11 +145,15 @@ enum Stop {
 /// The smoother on a validated, non-empty problem from a validated initial guess.
 pub(super) fn smooth(
     problem: &Problem,
+    checked: &Checked,
     initial: &[Vec<[f64; 3]>],
     options: &SmoothOptions,
 ) -> Result<Estimate, EstimateError> {
-    let graph = build(problem)?;
+    let graph = build(problem, checked)?;
     let mut values = Values::new();
+    for b in &problem.biases {
+        values.insert(bias_key(b.vehicle), VectorVar2::new(b.mean[0], b.mean[1]));
+    }
     for (v, track) in initial.iter().enumerate() {
         for (e, p) in track.iter().enumerate() {
             values.insert(
@@ -186,7 +163,8 @@ pub(super) fn smooth(
         }
     }
     // Last line of defence only: validation makes every system this solves full rank.
-    match catch_unwind(AssertUnwindSafe(|| solve(problem, graph, values, options))) {
+    let solved = || solve(problem, graph, values, options);
+    match catch_unwind(AssertUnwindSafe(solved)) {
         Ok(result) => result,
         Err(panic) => {
             let msg = panic
@@ -242,23 +220,18 @@ fn solve(
     // Polish (see the module documentation); each step is kept unless it raises the cost
     // beyond rounding.
     let nodes = problem.vehicles * problem.epochs;
+    let biased: Vec<usize> = problem.biases.iter().map(|b| b.vehicle).collect();
     let graph = lm.graph();
-    let mut linear = linearise(graph, &values, nodes)?;
+    let mut linear = linearise(graph, &values, nodes, &biased)?;
     if !matches!(stop, Stop::MaxIterations) {
         for _ in 0..3 {
             let decrement = linear.chol.newton_decrement(&linear.g);
             if decrement.is_nan() || decrement <= f64::EPSILON * f64::EPSILON * cost.max(1.0) {
                 break;
             }
-            let dx = linear.chol.solve(&linear.g);
-            let mut next = Values::new();
-            for (k, &c) in linear.cols.iter().enumerate() {
-                let p: &VectorVar3 = values.get(key(k)).ok_or_else(|| lost(k))?;
-                next.insert(
-                    key(k),
-                    VectorVar3::new(p.0[0] + dx[c], p.0[1] + dx[c + 1], p.0[2] + dx[c + 2]),
-                );
-            }
+            let dx = VectorX::from_vec(linear.chol.solve(&linear.g));
+            let mut next = values.clone();
+            next.oplus_mut(&LinearValues::from_order_and_vector(linear.order, dx));
             let next_cost = graph.error(&next);
             if next_cost.is_nan() || next_cost > cost + 1e-12 * cost.max(1.0) {
                 break;
@@ -266,10 +239,16 @@ fn solve(
             values = next;
             cost = next_cost;
             iterations += 1;
-            linear = linearise(graph, &values, nodes)?;
+            linear = linearise(graph, &values, nodes, &biased)?;
         }
     }
-    let Linear { chol, cols, g } = linear;
+    let Linear {
+        chol,
+        cols,
+        bias_cols,
+        g,
+        ..
+    } = linear;
     let decrement = chol.newton_decrement(&g);
     if decrement.is_nan() || decrement > options.acceptance {
         let why = match stop {
@@ -298,11 +277,20 @@ fn solve(
             covariance[v].push(block);
         }
     }
+    let mut bias = vec![None; problem.vehicles];
+    for (&v, &c) in biased.iter().zip(&bias_cols) {
+        let b: &VectorVar2 = values.get(bias_key(v)).ok_or_else(|| lost_bias(v))?;
+        let block = chol.block(&z, c).ok_or_else(|| {
+            EstimateError::Solver(format!("bias {v}'s block is not in the factor's pattern"))
+        })?;
+        bias[v] = Some(([b.0[0], b.0[1]], block));
+    }
     Ok(Estimate {
         position,
         covariance,
         iterations,
         cost,
+        bias,
     })
 }
 
@@ -310,22 +298,40 @@ fn lost(k: usize) -> EstimateError {
     EstimateError::Solver(format!("node {k} is missing from the solver's values"))
 }
 
-/// The problem linearised at some values: the factorised information matrix JᵀJ, each node's
-/// first column in it, and the gradient Jᵀb (b = −r, whitened).
+fn lost_bias(v: usize) -> EstimateError {
+    EstimateError::Solver(format!(
+        "vehicle {v}'s bias is missing from the solver's values"
+    ))
+}
+
+/// The problem linearised at some values: the factorised information matrix JᵀJ, the values'
+/// order, each node's and each bias's (in `biased` order) first column in it, and the gradient
+/// Jᵀb (b = −r, whitened).
 struct Linear {
     chol: Cholesky,
+    order: ValuesOrder,
     cols: Vec<usize>,
+    bias_cols: Vec<usize>,
     g: Vec<f64>,
 }
 
-fn linearise(graph: &Graph, values: &Values, nodes: usize) -> Result<Linear, EstimateError> {
+fn linearise(
+    graph: &Graph,
+    values: &Values,
+    nodes: usize,
+    biased: &[usize],
+) -> Result<Linear, EstimateError> {
     let order = ValuesOrder::from_values(values);
     let mut cols = Vec::with_capacity(nodes);
     for k in 0..nodes {
         cols.push(order.get(key(k)).ok_or_else(|| lost(k))?.idx);
     }
+    let mut bias_cols = Vec::with_capacity(biased.len());
+    for &v in biased {
+        bias_cols.push(order.get(bias_key(v)).ok_or_else(|| lost_bias(v))?.idx);
+    }
     let linear = graph.linearize(values);
-    let graph_order = linear.sparsity_pattern(order);
+    let graph_order = linear.sparsity_pattern(order.clone());
     let DiffResult { value: b, diff: j } = linear.residual_jacobian(&graph_order);
     let jt = j
         .as_ref()
@@ -336,5 +342,11 @@ fn linearise(graph: &Graph, values: &Values, nodes: usize) -> Result<Linear, Est
     let g = &jt * &b;
     let chol = Cholesky::new(info.as_ref()).map_err(EstimateError::Solver)?;
     let g = (0..g.nrows()).map(|i| g[(i, 0)]).collect();
-    Ok(Linear { chol, cols, g })
+    Ok(Linear {
+        chol,
+        order,
+        cols,
+        bias_cols,
+        g,
+    })
 }

@@ -5,9 +5,9 @@
 //! Solving Λ X = [e_i …] for blocks of unit columns costs O(n · nnz(L)), which for 21 vehicles
 //! × 200 epochs (n = 12 600 unknowns) is tens of billions of operations. Every 3×3 diagonal block
 //! of Λ⁻¹ lies on the pattern of L (each node's own prior or odometry factor makes its block of
-//! Λ structurally dense), and the Takahashi equations compute Λ⁻¹ on exactly that pattern in
-//! O(Σ_j Σ_{k∈S_j} |col k|), a few times the cost of the factorisation itself. The tests check
-//! the blocks against a dense inverse.
+//! Λ structurally dense, and so does each bias's prior for its 2×2 block), and the Takahashi
+//! equations compute Λ⁻¹ on exactly that pattern in O(Σ_j Σ_{k∈S_j} |col k|), a few times the
+//! cost of the factorisation itself. The tests check the blocks against a dense inverse.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -17,8 +17,6 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SparseColMatRef;
 use faer::{Par, Side};
-
-use super::Cov3;
 
 /// Λ = Pᵀ L Lᵀ P with L lower triangular, stored by columns (diagonal first in each column).
 pub(super) struct Cholesky {
@@ -183,11 +181,12 @@ impl Cholesky {
         z
     }
 
-    /// The 3×3 block of Λ⁻¹ on the original indices `c, c+1, c+2`, from `selected_inverse`'s `z`.
-    pub(super) fn block(&self, z: &[f64], c: usize) -> Option<Cov3> {
-        let mut out = [[0.0; 3]; 3];
-        for a in 0..3 {
-            for b in 0..3 {
+    /// The N×N block of Λ⁻¹ on the original indices `c .. c+N` (a node's 3×3, a bias's 2×2),
+    /// from `selected_inverse`'s `z`; `None` if it is not on the factor's pattern.
+    pub(super) fn block<const N: usize>(&self, z: &[f64], c: usize) -> Option<[[f64; N]; N]> {
+        let mut out = [[0.0; N]; N];
+        for a in 0..N {
+            for b in 0..N {
                 let (pa, pb) = (self.perm_inv[c + a], self.perm_inv[c + b]);
                 let (hi, lo) = if pa >= pb { (pa, pb) } else { (pb, pa) };
                 let col = self.col_ptr[lo]..self.col_ptr[lo + 1];

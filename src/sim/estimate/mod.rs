@@ -8,17 +8,25 @@
 //!   its epoch (what a vehicle knows on board; `ekf.rs`).
 //! - [`dead_reckoning`]: each vehicle from its priors and odometry alone.
 //!
+//! A vehicle may carry a [`Bias`]: its dead reckoning's constant heading bias β and DVL
+//! scale-factor error s become unknowns of both estimators (`bias.rs`), so that errors which
+//! persist over the whole mission are estimated instead of treated as fresh noise every cycle.
+//!
 //! Both estimators first validate the problem (`validate.rs`): every vehicle needs a prior at
 //! epoch 0 and, at every later epoch, odometry from the previous one or a prior; node indices
 //! must be in range, values finite, standard deviations between [`SIGMA_MIN`] and [`SIGMA_MAX`],
 //! covariances symmetric positive definite with variances between their squares and no
-//! correlation within ~1e-12 of ±1. That makes every system the smoother solves full rank.
+//! correlation within ~1e-12 of ±1; at most one [`Bias`] per vehicle, with |β| < 0.5 rad and
+//! |s| < 0.1 and prior standard deviations of at most 1 (rad, per unit). That makes every system
+//! the smoother solves full rank.
 //! A problem with no nodes (0 epochs or 0 vehicles) and no measurements has an empty estimate:
 //! `vehicles` empty tracks, 0 iterations, cost 0.
 
 use thiserror::Error;
 
+mod bias;
 mod ekf;
+mod factors;
 mod graph;
 mod marginal;
 #[cfg(test)]
@@ -29,6 +37,12 @@ pub use validate::{SIGMA_MAX, SIGMA_MIN};
 
 /// A 3×3 covariance, row-major, m².
 pub type Cov3 = [[f64; 3]; 3];
+
+/// A 2×2 covariance, row-major (of a [`Bias`]: [rad², rad; rad, 1]).
+pub type Cov2 = [[f64; 2]; 2];
+
+/// A vehicle's estimated biases [β (rad), s] and their marginal covariance.
+pub type BiasEstimate = ([f64; 2], Cov2);
 
 /// One unknown: the position of `vehicle` (0..N−1 the AUVs, N the USV) at `epoch`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -50,7 +64,10 @@ pub struct Prior {
     pub cov: Cov3,
 }
 
-/// Dead reckoning of one vehicle from `epoch` to `epoch + 1`: p\[e+1\] − p\[e\] = delta.
+/// Dead reckoning of one vehicle from `epoch` to `epoch + 1`: p\[e+1\] − p\[e\] = delta, or, for a
+/// vehicle with a [`Bias`] b = [β, s], p\[e+1\] − p\[e\] = g(b, delta) with
+/// g = [R_z(−β)·delta_xy / (1 + s); delta_z / (1 + s)] (the measured increment is
+/// (1 + s)·R_z(β) times the true one plus white noise; R_z(β) turns [x, y] from +x towards +y).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Odometry {
     /// Vehicle index.
@@ -59,8 +76,21 @@ pub struct Odometry {
     pub epoch: usize,
     /// Measured displacement, m (world frame).
     pub delta: [f64; 3],
-    /// Its covariance, m².
+    /// Its covariance, m² (for a vehicle with a [`Bias`], of the white noise only).
     pub cov: Cov3,
+}
+
+/// A vehicle's dead-reckoning biases as unknowns b = [β, s] with a Gaussian prior: β the compass
+/// heading bias (rad), s the DVL scale-factor error (fraction), both constant over the problem.
+/// They turn every [`Odometry`] of the vehicle into p\[e+1\] − p\[e\] = g(b, delta).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bias {
+    /// Vehicle index.
+    pub vehicle: usize,
+    /// Prior mean [β (rad), s]; |β| < 0.5 and |s| < 0.1.
+    pub mean: [f64; 2],
+    /// Prior covariance.
+    pub cov: Cov2,
 }
 
 /// A depth (pressure) measurement: z of `node` = `z`.
@@ -102,6 +132,9 @@ pub struct Problem {
     pub depths: Vec<Depth>,
     /// Acoustic ranges.
     pub ranges: Vec<Range>,
+    /// Dead-reckoning biases, at most one per vehicle (a vehicle without one has unbiased
+    /// odometry).
+    pub biases: Vec<Bias>,
 }
 
 /// Estimated positions and their marginal covariances, indexed `[vehicle][epoch]`.
@@ -114,9 +147,12 @@ pub struct Estimate {
     /// Nonlinear iterations taken (0 for the filter).
     pub iterations: usize,
     /// The smoother: its final cost ½ Σ ‖whitened residual‖² (its expectation is half the number
-    /// of scalar measurements minus 3 per node). The filter: ½ Σ of its squared normalised
-    /// innovations ν²/s.
+    /// of scalar measurements, a bias's prior counting 2, minus 3 per node and 2 per bias). The
+    /// filter: ½ Σ of its squared normalised innovations ν²/s.
     pub cost: f64,
+    /// Per vehicle, its estimated biases b = [β, s] and their marginal covariance (the filter:
+    /// after the last epoch), or `None` for a vehicle without a [`Bias`].
+    pub bias: Vec<Option<BiasEstimate>>,
 }
 
 /// Settings of the smoother's Levenberg–Marquardt solve.
@@ -169,17 +205,26 @@ pub enum EstimateError {
     Solver(String),
 }
 
+/// The estimate of a problem with no nodes: empty tracks, and each bias its prior.
 fn empty(problem: &Problem) -> Estimate {
+    let mut bias = vec![None; problem.vehicles];
+    for b in &problem.biases {
+        if let Some(slot) = bias.get_mut(b.vehicle) {
+            *slot = Some((b.mean, b.cov));
+        }
+    }
     Estimate {
         position: vec![Vec::new(); problem.vehicles],
         covariance: vec![Vec::new(); problem.vehicles],
         iterations: 0,
         cost: 0.0,
+        bias,
     }
 }
 
 /// The batch factor-graph estimate (smoother) of every node, from `initial` guesses
-/// (`[vehicle][epoch]`); with `initial` empty, from [`dead_reckoning`]. Default options.
+/// (`[vehicle][epoch]`); with `initial` empty, from [`dead_reckoning`]. Each [`Bias`] starts
+/// from its prior mean. Default options.
 ///
 /// Errors: [`EstimateError::Unobservable`] or [`EstimateError::BadMeasurement`] from
 /// validation (an `initial` of the wrong shape or not finite is a `BadMeasurement` of "initial
@@ -230,11 +275,12 @@ pub fn smooth_with(
         }
         initial
     };
-    graph::smooth(problem, initial, options)
+    graph::smooth(problem, &checked, initial, options)
 }
 
 /// Each vehicle's position from its priors and odometry alone: a node's first prior where it
-/// has one, else the previous position plus the (first) odometry increment into it. This is the
+/// has one, else the previous position plus the (first) odometry increment into it (for a vehicle
+/// with a [`Bias`], g(b, delta) at the bias's prior mean). This is the
 /// smoother's default initial guess; for an AUV with a single prior at epoch 0 it is pure dead
 /// reckoning.
 pub fn dead_reckoning(problem: &Problem) -> Result<Vec<Vec<[f64; 3]>>, EstimateError> {

@@ -251,6 +251,7 @@ fn truncate(p: &Problem, last: usize) -> Problem {
             .filter(|r| r.a.epoch.max(r.b.epoch) <= last)
             .cloned()
             .collect(),
+        biases: p.biases.clone(),
     }
 }
 
@@ -340,5 +341,7 @@ fn edge_sizes() {
     ));
 }
 
+mod bias;
+mod bias_checks;
 mod ranges;
 mod validation;

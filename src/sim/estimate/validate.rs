@@ -9,15 +9,25 @@
 //!   (to 1e-9 of its largest variance), has variances in [`SIGMA_MIN`², `SIGMA_MAX`²] and
 //!   correlations far enough from ±1 that its correlation matrix's Cholesky pivots are ≥ 1e-6
 //!   (condition of the correlation matrix ≲ 1e12).
+//! - Every [`Bias`](super::Bias) names a vehicle of the problem, at most one per vehicle, with a
+//!   finite mean of |β| < [`MAX_HEADING_BIAS`] rad and |s| < [`MAX_SCALE_ERROR`], and a covariance
+//!   held to the same standard as the others (standard deviations in [`SIGMA_MIN`,
+//!   [`MAX_BIAS_SIGMA`]] rad and per unit).
 
-use nalgebra::Matrix3;
+use nalgebra::{Matrix2, Matrix3};
 
-use super::{Cov3, EstimateError, Node, Problem};
+use super::{Cov2, Cov3, EstimateError, Node, Problem};
 
 /// The smallest standard deviation accepted, m.
 pub const SIGMA_MIN: f64 = 1e-9;
 /// The largest standard deviation accepted, m.
 pub const SIGMA_MAX: f64 = 1e9;
+/// The largest |β| of a bias's prior mean (exclusive), rad.
+pub(super) const MAX_HEADING_BIAS: f64 = 0.5;
+/// The largest |s| of a bias's prior mean (exclusive).
+pub(super) const MAX_SCALE_ERROR: f64 = 0.1;
+/// The largest prior standard deviation of β (rad) or s accepted.
+pub(super) const MAX_BIAS_SIGMA: f64 = 1.0;
 
 /// What validation learned about the problem's structure, indexed by node `v · epochs + e`.
 pub(super) struct Checked {
@@ -25,6 +35,8 @@ pub(super) struct Checked {
     pub priors: Vec<Vec<usize>>,
     /// The odometry arriving at each node (from epoch e − 1 to e), in input order.
     pub odometry_into: Vec<Vec<usize>>,
+    /// Per vehicle, the index of its bias in `problem.biases`.
+    pub bias: Vec<Option<usize>>,
 }
 
 /// The index of a node among `vehicles · epochs`.
@@ -121,6 +133,84 @@ pub(super) fn cov_factor(c: &Cov3) -> Result<Matrix3<f64>, String> {
         .ok_or_else(|| format!("covariance {c:?}: {ALLOWED}"))
 }
 
+/// The lower Cholesky factor of a bias's prior covariance that passes the module's checks,
+/// else why not.
+pub(super) fn cov2_factor(c: &Cov2) -> Result<Matrix2<f64>, String> {
+    const ALLOWED: &str = "a covariance must be finite, symmetric and positive definite";
+    if !c.iter().flatten().all(|v| v.is_finite()) {
+        return Err(format!("covariance {c:?} is not finite; {ALLOWED}"));
+    }
+    let scale = c[0][0].abs().max(c[1][1].abs());
+    if (c[1][0] - c[0][1]).abs() > 1e-9 * scale {
+        return Err(format!(
+            "covariance {c:?} is not symmetric ([1][0] ≠ [0][1]); {ALLOWED}"
+        ));
+    }
+    let (lo, hi) = (SIGMA_MIN * SIGMA_MIN, MAX_BIAS_SIGMA * MAX_BIAS_SIGMA);
+    for (i, unit) in [(0, "rad²"), (1, "")] {
+        if !(lo..=hi).contains(&c[i][i]) {
+            return Err(format!(
+                "covariance {c:?} has variance {} {unit} on axis {i}, not in [{lo:e}, {hi:e}]; \
+                 {ALLOWED}",
+                c[i][i]
+            ));
+        }
+    }
+    let rho = 0.5 * (c[0][1] + c[1][0]) / (c[0][0] * c[1][1]).sqrt();
+    // The second pivot of the correlation matrix's Cholesky factor.
+    let pivot = (1.0 - rho * rho).max(0.0).sqrt();
+    if pivot.is_nan() || pivot < 1e-6 {
+        return Err(format!(
+            "covariance {c:?} is not positive definite or is singular to working precision \
+             (correlation within 1e-12 of ±1); {ALLOWED}"
+        ));
+    }
+    let m = Matrix2::new(c[0][0], c[0][1], c[0][1], c[1][1]);
+    m.cholesky()
+        .map(|ch| ch.l())
+        .ok_or_else(|| format!("covariance {c:?}: {ALLOWED}"))
+}
+
+/// Checks the biases and indexes them by vehicle.
+fn biases(problem: &Problem) -> Result<Vec<Option<usize>>, EstimateError> {
+    let mut by_vehicle = vec![None; problem.vehicles];
+    for (i, b) in problem.biases.iter().enumerate() {
+        let what = format!("bias #{i} (vehicle {})", b.vehicle);
+        let Some(slot) = by_vehicle.get_mut(b.vehicle) else {
+            return Err(bad(
+                what,
+                format!(
+                    "vehicle {} is outside the problem: vehicles are 0..{}",
+                    b.vehicle, problem.vehicles
+                ),
+            ));
+        };
+        if let Some(j) = *slot {
+            return Err(bad(
+                what,
+                format!("the vehicle already has bias #{j}: at most one bias per vehicle"),
+            ));
+        }
+        finite(&b.mean, &what, "mean")?;
+        let [beta, s] = b.mean;
+        if beta.abs() >= MAX_HEADING_BIAS {
+            return Err(bad(
+                what,
+                format!("heading bias {beta} rad: |β| must be < {MAX_HEADING_BIAS} rad"),
+            ));
+        }
+        if s.abs() >= MAX_SCALE_ERROR {
+            return Err(bad(
+                what,
+                format!("scale-factor error {s}: |s| must be < {MAX_SCALE_ERROR}"),
+            ));
+        }
+        cov2_factor(&b.cov).map_err(|why| bad(what, why))?;
+        *slot = Some(i);
+    }
+    Ok(by_vehicle)
+}
+
 /// Checks `problem` (see the module documentation) and indexes its priors and odometry by node.
 pub(super) fn validate(problem: &Problem) -> Result<Checked, EstimateError> {
     let (vehicles, epochs) = (problem.vehicles, problem.epochs);
@@ -189,6 +279,7 @@ pub(super) fn validate(problem: &Problem) -> Result<Checked, EstimateError> {
         }
         sigma_ok(r.sigma, &what)?;
     }
+    let bias = biases(problem)?;
     for vehicle in 0..vehicles {
         for epoch in 0..epochs {
             let k = vehicle * epochs + epoch;
@@ -213,5 +304,6 @@ pub(super) fn validate(problem: &Problem) -> Result<Checked, EstimateError> {
     Ok(Checked {
         priors,
         odometry_into,
+        bias,
     })
 }

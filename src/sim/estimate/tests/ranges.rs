@@ -152,7 +152,7 @@ fn ranges_beat_dead_reckoning_and_are_consistent() {
 }
 
 /// The information matrix Σ JᵢᵀWᵢJᵢ and gradient Σ JᵢᵀWᵢrᵢ of the full problem at `x`, densely.
-fn information(p: &Problem, x: &[Vec<[f64; 3]>]) -> (DMatrix<f64>, DVector<f64>) {
+pub(super) fn information(p: &Problem, x: &[Vec<[f64; 3]>]) -> (DMatrix<f64>, DVector<f64>) {
     let n = 3 * p.vehicles * p.epochs;
     let (mut info, mut grad) = (DMatrix::zeros(n, n), DVector::zeros(n));
     let col = |nd: Node| 3 * (nd.vehicle * p.epochs + nd.epoch);

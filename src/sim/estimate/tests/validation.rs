@@ -40,6 +40,7 @@ fn base() -> Problem {
             range: 50.0,
             sigma: 1.0,
         }],
+        ..Default::default()
     }
 }
 
