@@ -125,6 +125,9 @@ enum Command {
         /// Fly over this seafloor grid instead of the one the plan names.
         #[arg(long)]
         seafloor: Option<PathBuf>,
+        /// Do not draw the figures (sim-error, sim-tracks) into `figures` beside sim.json.
+        #[arg(long)]
+        no_plot: bool,
     },
     /// Seafloor tools.
     Seafloor {
@@ -313,7 +316,16 @@ fn run(cli: Cli) -> Result<ExitCode> {
             runs,
             out,
             seafloor,
-        } => simulate(&plan, &set, seed, runs as usize, out, seafloor.as_deref()),
+            no_plot,
+        } => simulate(
+            &plan,
+            &set,
+            seed,
+            runs as usize,
+            out,
+            seafloor.as_deref(),
+            !no_plot,
+        ),
         Command::Export { plan, out, csv } => {
             let csv = out.or(csv).expect("clap requires OUT.csv or --csv");
             let p = shoal::output::read_plan(&plan)?;
@@ -459,6 +471,7 @@ fn simulate(
     runs: usize,
     out: Option<PathBuf>,
     seafloor: Option<&Path>,
+    figures: bool,
 ) -> Result<ExitCode> {
     let p = shoal::output::read_plan(plan)?;
     let floor = shoal::check::load_floor(&p, seafloor)
@@ -471,6 +484,12 @@ fn simulate(
     let out = out.unwrap_or_else(|| base_dir(Some(plan)).join("sim.json"));
     shoal::sim::write(&record, &out)?;
     print!("{}", shoal::sim::summary::table(&record));
+    if figures {
+        let dir = base_dir(Some(&out)).join("figures");
+        let files = shoal::figures::write_sim(&p, &floor, &record, &dir)
+            .with_context(|| format!("drawing the figures of {}", out.display()))?;
+        println!("drew {} figure files in {}", files.len(), dir.display());
+    }
     println!(
         "wrote {} ({} run{}, seed {seed}, {:.1} s)",
         out.display(),

@@ -39,47 +39,56 @@ fn labels(stem: &str) -> &'static [&'static str] {
     }
 }
 
+/// Checks that `dir/STEM.png` decodes, is at least 800×300 and is not nearly blank.
+fn assert_png(dir: &Path, stem: &str) {
+    let png = dir.join(format!("{stem}.png"));
+    let bytes = std::fs::read(&png).unwrap_or_else(|e| panic!("{}: {e}", png.display()));
+    let mut reader = png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .unwrap_or_else(|e| panic!("{stem}.png does not decode: {e}"));
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert!(
+        info.width >= 800 && info.height >= 300,
+        "{stem}.png is {}×{}",
+        info.width,
+        info.height
+    );
+    let pixels = &buf[..info.buffer_size()];
+    let inked = pixels.chunks(3).filter(|p| p != &[255, 255, 255]).count();
+    assert!(inked * 50 > pixels.len() / 3, "{stem}.png is nearly blank");
+}
+
+/// `dir/STEM.svg`, checked to parse as an SVG with no raster placeholder left, and the text of
+/// its `<text>` elements, one a line.
+fn svg_text(dir: &Path, stem: &str) -> String {
+    let svg_path = dir.join(format!("{stem}.svg"));
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    let doc =
+        roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{stem}.svg is not XML: {e}"));
+    assert_eq!(doc.root_element().tag_name().name(), "svg");
+    // Depth rasters are embedded as PNG data, not left as placeholders.
+    assert!(
+        !svg.contains("#010203"),
+        "{stem}.svg has a raster placeholder"
+    );
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| n.text())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 fn assert_figures(dir: &Path) {
     for stem in FIGURES.iter().chain([&TABLE]) {
-        let png = dir.join(format!("{stem}.png"));
-        let bytes = std::fs::read(&png).unwrap_or_else(|e| panic!("{}: {e}", png.display()));
-        let mut reader = png::Decoder::new(std::io::Cursor::new(bytes))
-            .read_info()
-            .unwrap_or_else(|e| panic!("{stem}.png does not decode: {e}"));
-        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-        let info = reader.next_frame(&mut buf).unwrap();
-        assert!(
-            info.width >= 800 && info.height >= 300,
-            "{stem}.png is {}×{}",
-            info.width,
-            info.height
-        );
-        let pixels = &buf[..info.buffer_size()];
-        let inked = pixels.chunks(3).filter(|p| p != &[255, 255, 255]).count();
-        assert!(inked * 50 > pixels.len() / 3, "{stem}.png is nearly blank");
-
-        let svg_path = dir.join(format!("{stem}.svg"));
-        let svg = std::fs::read_to_string(&svg_path).unwrap();
-        let doc = roxmltree::Document::parse(&svg)
-            .unwrap_or_else(|e| panic!("{stem}.svg is not XML: {e}"));
-        assert_eq!(doc.root_element().tag_name().name(), "svg");
-        let text: String = doc
-            .descendants()
-            .filter(|n| n.has_tag_name("text"))
-            .filter_map(|n| n.text())
-            .collect::<Vec<_>>()
-            .join("\n");
+        assert_png(dir, stem);
+        let text = svg_text(dir, stem);
         for label in labels(stem) {
             assert!(text.contains(label), "{stem}.svg lacks \"{label}\"");
         }
         assert!(
             text.contains("N = 2, seed 1, windows 0–1"),
             "{stem}.svg: no scenario in title"
-        );
-        // Depth rasters are embedded as PNG data, not left as placeholders.
-        assert!(
-            !svg.contains("#010203"),
-            "{stem}.svg has a raster placeholder"
         );
     }
 }
@@ -231,4 +240,80 @@ fn regression_one_auv_one_step_figures_say_what_they_show() {
             "{stem} lists A2A links for one AUV"
         );
     }
+}
+
+/// `shoal simulate`'s figures of the default plan: both as a PNG that decodes and an SVG that
+/// parses; the error plot's legend names every policy, both estimators and the Step 1 flight,
+/// the top view the estimate it shows; a record that does not fit the plan is refused.
+#[test]
+fn sim_figures_show_every_policy_and_the_estimate_as_png_and_svg() {
+    use shoal::figures::{write_sim, write_sim_with, FigureError, SIM_FIGURES};
+    use shoal::sim::policy::Policy;
+    use shoal::{Planner, Scenario, Seafloor};
+
+    let s = Scenario::default();
+    let floor = Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();
+    let plan = Planner::new(&s, &floor).run().expect("plan");
+    let sim = shoal::sim::simulate(&plan, "plan.json", &floor, 1).expect("simulation");
+    let dir = tempfile::tempdir().unwrap();
+    let written = write_sim(&plan, &floor, &sim, dir.path()).expect("figures");
+    assert_eq!(written.len(), 2 * SIM_FIGURES.len());
+    for stem in SIM_FIGURES {
+        for ext in ["png", "svg"] {
+            let f = dir.path().join(format!("{stem}.{ext}"));
+            assert!(written.contains(&f), "{} not returned", f.display());
+            let len = std::fs::metadata(&f).unwrap().len();
+            assert!(len > 20_000, "{} has {len} bytes", f.display());
+        }
+        assert_png(dir.path(), stem);
+    }
+
+    let text = svg_text(dir.path(), "sim-error");
+    let expected = [
+        "dead reckoning",
+        "A2U only",
+        "planned chain",
+        "all links",
+        "factor graph",
+        "EKF",
+        "Step 1 paths (no chain), all links",
+        "planned links received",
+        "time t (s)",
+        "team position error (m)",
+        "simulation seed 1",
+        "N = 5, seed 1, window 0",
+    ];
+    for label in expected {
+        assert!(text.contains(label), "sim-error.svg lacks \"{label}\"");
+    }
+    let text = svg_text(dir.path(), "sim-tracks");
+    let expected = [
+        "x, east (m)",
+        "y, north (m)",
+        "floor elevation z (m)",
+        "USV",
+        "AUV 4",
+        "planned path",
+        "executed path",
+        "estimate: planned chain, factor graph",
+        "2-σ ellipse",
+    ];
+    for label in expected {
+        assert!(text.contains(label), "sim-tracks.svg lacks \"{label}\"");
+    }
+
+    // Another estimate on request; one the record lacks, or a record of another team, is an
+    // error, not a panic.
+    let other = dir.path().join("ekf");
+    write_sim_with(&plan, &floor, &sim, &other, Policy::AllLinks, "ekf").expect("figures");
+    assert!(svg_text(&other, "sim-tracks").contains("estimate: all links, EKF"));
+    let err = write_sim_with(&plan, &floor, &sim, &other, Policy::Chain, "kalman").unwrap_err();
+    assert!(
+        matches!(&err, FigureError::Sim(why) if why.contains("kalman")),
+        "{err}"
+    );
+    let mut cut = sim.clone();
+    cut.flight.executed.pop();
+    let err = write_sim(&plan, &floor, &cut, &other).unwrap_err();
+    assert!(matches!(err, FigureError::Sim(_)), "{err}");
 }

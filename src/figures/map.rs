@@ -5,14 +5,16 @@ use super::canvas::{Area, DrawResult, Figure, Images};
 use super::overlay;
 use super::raster::{self, Grid, View};
 use super::scene::{Scene, Stage};
-use super::style::{self, text, Entry, Frame, Swatch, LABEL, TICK};
+use super::style::{self, text, DrawErr, Entry, Frame, Swatch, LABEL, TICK};
+use crate::seafloor::Seafloor;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
-const MARGIN: u32 = 20;
-const X_AREA: u32 = 70;
-const Y_AREA: u32 = 110;
-const BAR: u32 = 215;
+/// Layout of a top view, pixels: margin around the map, x and y label areas, colour bar.
+pub(crate) const MARGIN: u32 = 20;
+pub(crate) const X_AREA: u32 = 70;
+pub(crate) const Y_AREA: u32 = 110;
+pub(crate) const BAR: u32 = 215;
 /// Largest and smallest plot area, pixels.
 const MAX_PLOT: (f64, f64) = (980.0, 780.0);
 const MIN_PLOT: (f64, f64) = (560.0, 380.0);
@@ -62,8 +64,7 @@ impl<'a> Map<'a> {
             pad(scene.bbox())
         };
         let (view, plot) = fit(data, extent);
-        let (lo, hi) = scene.floor.z_range();
-        let contour_step = raster::nice_step(hi - lo, 9.0);
+        let contour_step = contour_step(scene.floor);
         let (title, mut entries) = match kind {
             Kind::Floor => ("Seafloor", Vec::new()),
             Kind::Paths(Stage::Step1) => ("Step 1 paths (P2), top view", paths_legend(scene)),
@@ -75,10 +76,7 @@ impl<'a> Map<'a> {
                 links_legend(scene),
             ),
         };
-        entries.push(Entry::new(
-            format!("depth contours every {contour_step} m"),
-            Swatch::Line(RGBColor(60, 60, 60), 1),
-        ));
+        entries.push(contour_entry(contour_step));
         if kind == Kind::Floor {
             entries.push(Entry::new("USV start", Swatch::Square(BLACK)));
             entries.push(Entry::new(
@@ -119,8 +117,22 @@ fn links_legend(scene: &Scene) -> Vec<Entry> {
     e
 }
 
+/// The spacing of the depth contours over `floor`, m.
+pub(crate) fn contour_step(floor: &Seafloor) -> f64 {
+    let (lo, hi) = floor.z_range();
+    raster::nice_step(hi - lo, 9.0)
+}
+
+/// The legend entry of the depth contours.
+pub(crate) fn contour_entry(step: f64) -> Entry {
+    Entry::new(
+        format!("depth contours every {step} m"),
+        Swatch::Line(RGBColor(60, 60, 60), 1),
+    )
+}
+
 /// The data's box with a margin around it.
-fn pad(b: View) -> View {
+pub(crate) fn pad(b: View) -> View {
     let m = 0.03 * (b[1] - b[0]).max(b[3] - b[2]) + 100.0;
     [b[0] - m, b[1] + m, b[2] - m, b[3] + m]
 }
@@ -153,6 +165,17 @@ pub(crate) fn axes<DB: DrawingBackend>(
     y_desc: &str,
     grid: bool,
 ) -> DrawResult<DB> {
+    axes_with(chart, x_desc, y_desc, grid, 8)
+}
+
+/// [`axes`] with about `y_labels` labels on the y axis (fewer for a short panel).
+pub(crate) fn axes_with<DB: DrawingBackend>(
+    chart: &mut Chart2d<'_, DB>,
+    x_desc: &str,
+    y_desc: &str,
+    grid: bool,
+    y_labels: usize,
+) -> DrawResult<DB> {
     let mut mesh = chart.configure_mesh();
     if !grid {
         mesh.disable_mesh();
@@ -164,7 +187,7 @@ pub(crate) fn axes<DB: DrawingBackend>(
         .light_line_style(RGBColor(235, 235, 235))
         .bold_line_style(RGBColor(205, 205, 205))
         .x_labels(9)
-        .y_labels(8)
+        .y_labels(y_labels)
         .x_label_formatter(&style::tick)
         .y_label_formatter(&style::tick)
         .draw()
@@ -188,23 +211,17 @@ impl Figure for Map<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &Area<DB>, images: &mut Images) -> DrawResult<DB> {
         let body = self.frame.draw(root)?;
         let (left, right) = body.split_horizontally(self.frame_width() - BAR);
-        let v = self.view;
-        let mut chart = ChartBuilder::on(&left)
-            .margin(MARGIN)
-            .x_label_area_size(X_AREA)
-            .y_label_area_size(Y_AREA)
-            .build_cartesian_2d(v[0]..v[1], v[2]..v[3])?;
         let muted = self.kind != Kind::Floor;
-        let area = chart.plotting_area();
-        let (pos, size) = (area.get_base_pixel(), area.dim_in_pixel());
-        let res = match images.max_side() {
-            Some(m) => shrink(size, m),
-            None => size,
-        };
-        let r = raster::depth_raster(self.scene.floor, v, res, muted);
-        images.draw(root, pos, size, r)?;
-        axes(&mut chart, "x, east (m)", "y, north (m)", false)?;
-        self.draw_contours(&mut chart)?;
+        let floor = self.scene.floor;
+        let mut chart = floor_chart(
+            root,
+            &left,
+            images,
+            floor,
+            self.view,
+            muted,
+            self.contour_step,
+        )?;
         match self.kind {
             Kind::Floor => self.draw_floor_marks(&mut chart)?,
             Kind::Paths(stage) => overlay::paths(&mut chart, self.scene, stage, 3)?,
@@ -213,36 +230,44 @@ impl Figure for Map<'_> {
                 overlay::links(&mut chart, self.scene)?;
             }
         }
-        overlay::colour_bar(&right, self.scene.floor, muted, MARGIN, X_AREA)
+        overlay::colour_bar(&right, floor, muted, MARGIN, X_AREA)
     }
+}
+
+/// The floor of a top view in `area` (part of `root`) over `view`: its depth raster (`muted`:
+/// whitened, for paths over it), the axes and the contours every `contour_step` m. Returns the
+/// chart to draw over it; the colour bar goes beside it ([`overlay::colour_bar`]).
+pub(crate) fn floor_chart<'b, DB: DrawingBackend>(
+    root: &Area<DB>,
+    area: &'b Area<DB>,
+    images: &mut Images,
+    floor: &Seafloor,
+    view: View,
+    muted: bool,
+    contour_step: f64,
+) -> Result<Chart2d<'b, DB>, DrawErr<DB>> {
+    let v = view;
+    let mut chart = ChartBuilder::on(area)
+        .margin(MARGIN)
+        .x_label_area_size(X_AREA)
+        .y_label_area_size(Y_AREA)
+        .build_cartesian_2d(v[0]..v[1], v[2]..v[3])?;
+    let plot = chart.plotting_area();
+    let (pos, size) = (plot.get_base_pixel(), plot.dim_in_pixel());
+    let res = match images.max_side() {
+        Some(m) => shrink(size, m),
+        None => size,
+    };
+    let r = raster::depth_raster(floor, v, res, muted);
+    images.draw(root, pos, size, r)?;
+    axes(&mut chart, "x, east (m)", "y, north (m)", false)?;
+    draw_contours(&mut chart, floor, v, contour_step, muted)?;
+    Ok(chart)
 }
 
 impl Map<'_> {
     fn frame_width(&self) -> u32 {
         MARGIN * 2 + Y_AREA + self.plot.0 + BAR
-    }
-
-    fn draw_contours<DB: DrawingBackend>(&self, chart: &mut Chart2d<'_, DB>) -> DrawResult<DB> {
-        let v = self.view;
-        let n = 220.0;
-        let (xr, yr) = (v[1] - v[0], v[3] - v[2]);
-        let (nx, ny) = if xr > yr {
-            (n, n * yr / xr)
-        } else {
-            (n * xr / yr, n)
-        };
-        let g = Grid::sample(self.scene.floor, v, nx as usize, ny as usize);
-        let (lo, hi) = self.scene.floor.z_range();
-        let step = self.contour_step;
-        let alpha = if self.kind == Kind::Floor { 0.55 } else { 0.35 };
-        let style = RGBColor(40, 40, 40).mix(alpha).stroke_width(1);
-        let mut level = (lo / step).ceil() * step;
-        while level <= hi {
-            let lines = raster::contours(&g, level);
-            chart.draw_series(lines.into_iter().map(|l| PathElement::new(l, style)))?;
-            level += step;
-        }
-        Ok(())
     }
 
     fn draw_floor_marks<DB: DrawingBackend>(&self, chart: &mut Chart2d<'_, DB>) -> DrawResult<DB> {
@@ -264,6 +289,34 @@ impl Map<'_> {
         )))?;
         Ok(())
     }
+}
+
+/// Depth contours of `floor` over `view` every `step` m (fainter when `muted`).
+fn draw_contours<DB: DrawingBackend>(
+    chart: &mut Chart2d<'_, DB>,
+    floor: &Seafloor,
+    v: View,
+    step: f64,
+    muted: bool,
+) -> DrawResult<DB> {
+    let n = 220.0;
+    let (xr, yr) = (v[1] - v[0], v[3] - v[2]);
+    let (nx, ny) = if xr > yr {
+        (n, n * yr / xr)
+    } else {
+        (n * xr / yr, n)
+    };
+    let g = Grid::sample(floor, v, nx as usize, ny as usize);
+    let (lo, hi) = floor.z_range();
+    let alpha = if muted { 0.35 } else { 0.55 };
+    let style = RGBColor(40, 40, 40).mix(alpha).stroke_width(1);
+    let mut level = (lo / step).ceil() * step;
+    while level <= hi {
+        let lines = raster::contours(&g, level);
+        chart.draw_series(lines.into_iter().map(|l| PathElement::new(l, style)))?;
+        level += step;
+    }
+    Ok(())
 }
 
 fn shrink((w, h): (u32, u32), max: u32) -> (u32, u32) {

@@ -19,6 +19,8 @@ mod persp;
 mod raster;
 mod scene;
 mod series;
+mod sim;
+mod sim_tracks;
 mod style;
 mod table;
 mod text;
@@ -29,6 +31,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use thiserror::Error;
 
+pub use sim::{write_sim, write_sim_with, SIM_FIGURES};
 pub use style::{vehicle_colour, vehicle_name};
 
 /// The figures [`write_all`] writes, by file stem; each as `STEM.png` and `STEM.svg`.
@@ -67,6 +70,10 @@ pub enum FigureError {
     /// number of AUVs, not K + 1 states, …); holds what is wrong.
     #[error("cannot plot the plan: {0}")]
     Plan(String),
+    /// A simulation record that does not fit its plan or whose arrays do not have one entry
+    /// per AUV and epoch; holds what is wrong.
+    #[error("cannot plot the simulation: {0}")]
+    Sim(String),
 }
 
 /// One figure written, for progress reports.
