@@ -35,8 +35,9 @@ pub struct Increment {
     pub bottom_lock: f64,
 }
 
-/// One ping of one acoustic cycle between vehicles `a` < `b` (the USV is index N).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One ping of one acoustic cycle between vehicles `a` < `b` (the USV is index N), as
+/// sim.json records it.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Ping {
     /// Epoch (acoustic cycle) index.
     pub epoch: usize,
@@ -51,7 +52,7 @@ pub struct Ping {
     pub line_of_sight: bool,
     /// Whether the ping was received.
     pub received: bool,
-    /// Measured range (travel time × sound speed), m.
+    /// Measured range (travel time × sound speed), m (meaningful when received).
     pub range: f64,
 }
 

@@ -66,7 +66,7 @@ pub struct FlightRecord {
     /// `[epoch]`: the USV's GPS fixes, m.
     pub gps: Vec<[f64; 2]>,
     /// Every ping: epoch, pair, distance, line of sight, received, measured range.
-    pub pings: Vec<PingRecord>,
+    pub pings: Vec<Ping>,
     /// Tracking, floor clearance and connectivity of the executed path.
     pub metrics: FlightMetrics,
 }
@@ -85,39 +85,6 @@ impl From<SensorErrors> for SensorErrorsRecord {
         SensorErrorsRecord {
             dvl_scale: e.dvl_scale,
             heading_bias: e.heading_bias,
-        }
-    }
-}
-
-/// One ping, as written.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct PingRecord {
-    /// Epoch index.
-    pub epoch: usize,
-    /// One end (vehicle index).
-    pub a: usize,
-    /// The other end (the USV is index `auvs`).
-    pub b: usize,
-    /// True distance, m.
-    pub distance: f64,
-    /// Line of sight on the executed positions.
-    pub line_of_sight: bool,
-    /// Received.
-    pub received: bool,
-    /// Measured range, m (meaningful when received).
-    pub range: f64,
-}
-
-impl From<&Ping> for PingRecord {
-    fn from(p: &Ping) -> Self {
-        PingRecord {
-            epoch: p.epoch,
-            a: p.a,
-            b: p.b,
-            distance: p.distance,
-            line_of_sight: p.line_of_sight,
-            received: p.received,
-            range: p.range,
         }
     }
 }

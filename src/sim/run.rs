@@ -7,7 +7,7 @@ use super::flight::{fly, Flight};
 use super::measure::{measure, Measurements};
 use super::policy::{initial_start, problem, Policy, Start};
 use super::record::{
-    packed, EstimateRecord, FlightMetrics, FlightRecord, NavMetrics, PingRecord, SimRecord, FORMAT,
+    packed, EstimateRecord, FlightMetrics, FlightRecord, NavMetrics, SimRecord, FORMAT,
 };
 use super::reference::{Flown, Reference};
 use super::remus::Remus100;
@@ -502,7 +502,7 @@ fn flight_record(flight: &Flight, m: &Measurements, metrics: FlightMetrics) -> F
             .collect(),
         depth: m.depth.clone(),
         gps: m.gps.clone(),
-        pings: m.pings.iter().map(PingRecord::from).collect(),
+        pings: m.pings.clone(),
         metrics,
     }
 }
