@@ -76,6 +76,10 @@ enum Command {
         /// Show the plan on this seafloor grid instead of the one the plan names.
         #[arg(long)]
         seafloor: Option<PathBuf>,
+        /// Also show this simulation of the plan (sim.json of `shoal simulate`): each AUV's
+        /// executed track and the chain's factor-graph estimate.
+        #[arg(long)]
+        sim: Option<PathBuf>,
     },
     /// Draw the figures of a plan (PNG and SVG): floor, paths, links, time series, metrics.
     Plot {
@@ -308,7 +312,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             plan,
             out,
             seafloor,
-        } => view(&plan, seafloor.as_deref(), &out),
+            sim,
+        } => view(&plan, seafloor.as_deref(), sim.as_deref(), &out),
         Command::Simulate {
             plan,
             set,
@@ -500,11 +505,29 @@ fn simulate(
     Ok(ExitCode::SUCCESS)
 }
 
-fn view(plan: &Path, seafloor: Option<&Path>, out: &Path) -> Result<ExitCode> {
+fn view(plan: &Path, seafloor: Option<&Path>, sim: Option<&Path>, out: &Path) -> Result<ExitCode> {
     let p = shoal::output::read_plan(plan)?;
     let floor = shoal::check::load_floor(&p, seafloor)
         .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
-    shoal::viewer::write_html(&p, &floor, out)?;
+    let record: Option<shoal::sim::SimRecord> = match sim {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("reading {}", path.display()))?;
+            Some(
+                serde_json::from_str(&text)
+                    .with_context(|| format!("{} is not a sim.json", path.display()))?,
+            )
+        }
+        None => None,
+    };
+    shoal::viewer::write_html_with_sim(&p, &floor, record.as_ref(), out).map_err(|e| {
+        match (&e, sim) {
+            (shoal::viewer::ViewerError::Sim(_), Some(path)) => anyhow::Error::new(e).context(
+                format!("{} does not fit {}", path.display(), plan.display()),
+            ),
+            _ => e.into(),
+        }
+    })?;
     let size = std::fs::metadata(out).map(|m| m.len()).unwrap_or(0);
     println!(
         "wrote {} ({:.1} MB): open it in a browser",

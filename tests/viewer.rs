@@ -1,6 +1,7 @@
 //! The 3D viewer: `shoal view` writes one HTML file, and headless Chromium renders it from
 //! file:// with no console or page errors and no network, its canvas drawn, its time slider
-//! moving the displayed step (tests/viewer/check.mjs, driven by playwright-core).
+//! moving the displayed step, the layers of a simulation's tracks toggled (tests/viewer/check.mjs,
+//! driven by playwright-core).
 //!
 //! Needs node, `npm ci --prefix tests/viewer` and Debian's chromium (`apt-get install -y
 //! --no-install-recommends chromium`); `.ci/run` installs them. Without them the browser test
@@ -8,7 +9,8 @@
 
 mod common;
 
-use shoal::scenario;
+use shoal::scenario::{self, Scenario};
+use shoal::seafloor::Seafloor;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -76,7 +78,9 @@ fn the_viewer_renders_in_headless_chromium_and_its_slider_moves_the_step() {
     let html = dir.join("mission.html");
     let shot = dir.join("viewer.png");
     let _ = std::fs::remove_file(&shot);
-    shoal::viewer::write_html(&p, &floor, &html).expect("write the viewer");
+    // with a simulation: its tracks and their layer toggles too
+    let sim = shoal::sim::simulate(&p, "plan.json", &floor, 1).expect("simulate");
+    shoal::viewer::write_html_with_sim(&p, &floor, Some(&sim), &html).expect("write the viewer");
     let out = Command::new("node")
         .arg(manifest().join("tests/viewer/check.mjs"))
         .arg(&html)
@@ -186,4 +190,151 @@ fn a_plan_with_inconsistent_paths_is_refused_by_name() {
     p.windows[0].links.links[2][0].a = 7;
     let err = shoal::viewer::render_html(&p, &floor).unwrap_err();
     assert!(err.to_string().contains("names an AUV beyond"), "{err}");
+}
+
+/// The plan data embedded in a viewer page.
+fn embedded_data(html: &str) -> serde_json::Value {
+    let start = "<script id=\"plan-data\" type=\"application/json\">";
+    let json = &html[html.find(start).unwrap() + start.len()..];
+    let json = &json[..json.find("</script>").unwrap()];
+    serde_json::from_str(json).unwrap()
+}
+
+#[test]
+fn shoal_view_with_a_sim_embeds_every_auvs_executed_and_estimated_track() {
+    let s = Scenario::default();
+    let floor = Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();
+    let plan = shoal::planner::Planner::new(&s, &floor).run().unwrap();
+    let sim = shoal::sim::simulate(&plan, "plan.json", &floor, 1).unwrap();
+    let n = s.team.auvs;
+    let without = shoal::viewer::render_html(&plan, &floor).unwrap();
+    let html = shoal::viewer::render_html_with_sim(&plan, &floor, Some(&sim)).unwrap();
+    assert!(embedded_data(&without).get("sim").is_none());
+    let data = embedded_data(&html);
+    let d = &data["sim"];
+    let epochs = sim.times.len();
+    assert!(epochs > 1);
+    assert_eq!(d["times"].as_array().unwrap().len(), epochs);
+    let e = &d["estimate"];
+    assert_eq!(
+        (&e["policy"], &e["estimator"], &e["flown"]),
+        (
+            &serde_json::json!("chain"),
+            &serde_json::json!("factor_graph"),
+            &serde_json::json!("final")
+        )
+    );
+    for (key, track) in [("executed", &d["executed"]), ("estimate", &e["position"])] {
+        let per_auv = track.as_array().unwrap();
+        assert_eq!(per_auv.len(), n, "{key}");
+        for (i, t) in per_auv.iter().enumerate() {
+            let t = t.as_array().unwrap();
+            assert_eq!(t.len(), epochs, "{key} of AUV {i}");
+            for v in t.iter().flat_map(|p| p.as_array().unwrap()) {
+                let v = v.as_f64().unwrap();
+                assert!(
+                    (v * 10.0 - (v * 10.0).round()).abs() < 1e-6,
+                    "{v} not to 0.1 m"
+                );
+            }
+        }
+    }
+    let x = d["executed"][1][epochs / 2][0].as_f64().unwrap();
+    assert!((x - sim.flight.executed[1][epochs / 2][0]).abs() <= 0.05 + 1e-9);
+    let chain = sim
+        .estimates
+        .iter()
+        .find(|e| e.policy.name() == "chain" && e.estimator == "factor_graph" && e.flown == "final")
+        .unwrap();
+    let y = e["position"][0][epochs - 1][1].as_f64().unwrap();
+    assert!((y - chain.position[0][epochs - 1][1]).abs() <= 0.05 + 1e-9);
+    // the layer toggles
+    for id in ["layer-planned", "layer-executed", "layer-estimate"] {
+        assert!(html.contains(&format!("id=\"{id}\"")), "{id}");
+    }
+    let dir = out_dir("sim");
+    std::fs::write(dir.join("mission.html"), &html).unwrap();
+    std::fs::write(dir.join("mission-plan-only.html"), &without).unwrap();
+    eprintln!(
+        "default mission: {} bytes without the sim, {} bytes with it ({epochs} epochs, {n} AUVs)",
+        without.len(),
+        html.len()
+    );
+    // the CLI
+    let plan_path = dir.join("plan.json");
+    let sim_path = dir.join("sim.json");
+    shoal::output::write_plan(&plan, &plan_path).unwrap();
+    std::fs::write(&sim_path, serde_json::to_string(&sim).unwrap()).unwrap();
+    let out_path = dir.join("cli.html");
+    let out = Command::new(env!("CARGO_BIN_EXE_shoal"))
+        .arg("view")
+        .arg(&plan_path)
+        .arg("--sim")
+        .arg(&sim_path)
+        .arg("-o")
+        .arg(&out_path)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let cli = embedded_data(&std::fs::read_to_string(&out_path).unwrap());
+    assert_eq!(cli["sim"]["executed"].as_array().unwrap().len(), n);
+}
+
+#[test]
+fn a_sim_of_another_team_or_with_misfit_arrays_is_refused_by_name() {
+    let (p, floor) = small_plan();
+    let sim = shoal::sim::simulate(&p, "plan.json", &floor, 1).unwrap();
+    // arrays that do not fit
+    let mut short = sim.clone();
+    short.flight.executed[1].pop();
+    let err = shoal::viewer::render_html_with_sim(&p, &floor, Some(&short)).unwrap_err();
+    assert!(
+        err.to_string().contains("flight.executed of AUV 1 has"),
+        "{err}"
+    );
+    let mut no_chain = sim.clone();
+    no_chain.estimates.retain(|e| e.policy.name() != "chain");
+    let err = shoal::viewer::render_html_with_sim(&p, &floor, Some(&no_chain)).unwrap_err();
+    assert!(err.to_string().contains("no estimate"), "{err}");
+    // another team, through the CLI: the error names the sim file
+    let mut other = sim.clone();
+    other.auvs = 3;
+    let err = shoal::viewer::render_html_with_sim(&p, &floor, Some(&other)).unwrap_err();
+    assert!(err.to_string().contains("3 AUVs, the plan has 2"), "{err}");
+    let dir = out_dir("sim-mismatch");
+    let plan_path = dir.join("plan.json");
+    let sim_path = dir.join("other-sim.json");
+    shoal::output::write_plan(&p, &plan_path).unwrap();
+    std::fs::write(&sim_path, serde_json::to_string(&other).unwrap()).unwrap();
+    let html = dir.join("x.html");
+    let _ = std::fs::remove_file(&html);
+    let out = Command::new(env!("CARGO_BIN_EXE_shoal"))
+        .arg("view")
+        .arg(&plan_path)
+        .arg("--sim")
+        .arg(&sim_path)
+        .arg("-o")
+        .arg(&html)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("other-sim.json") && stderr.contains("3 AUVs, the plan has 2"),
+        "{stderr}"
+    );
+    assert!(!html.exists());
+    // not a sim.json at all
+    std::fs::write(&sim_path, "{}").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_shoal"))
+        .arg("view")
+        .arg(&plan_path)
+        .arg("--sim")
+        .arg(&sim_path)
+        .arg("-o")
+        .arg(&html)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("other-sim.json"));
 }

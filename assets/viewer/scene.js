@@ -134,6 +134,71 @@ export class MissionScene {
 
     this.vehicles = this.buildVehicles();
     this.links = this.buildLinkPool();
+    // With a simulation: each AUV's executed track (a tube darker and thicker than the planned
+    // path) and the estimate's track (dots); the markers follow the executed track.
+    this.layers = { planned: true, executed: !!data.sim, estimate: !!data.sim };
+    this.tracks = data.sim ? this.buildTracks() : [];
+  }
+
+  buildTracks() {
+    const d = this.data;
+    const s = d.sim;
+    const segments = Math.max(s.times.length - 1, 1);
+    const cyl = new THREE.CylinderGeometry(1, 1, 1, 8, 1, true);
+    const tracks = [];
+    for (let i = 0; i < d.auvs; i++) {
+      const base = new THREE.Color(auvColor(d, i));
+      const dark = base.clone().multiplyScalar(0.45);
+      const mat = new THREE.MeshLambertMaterial({ color: dark, emissive: dark, emissiveIntensity: 0.4 });
+      const exec = new THREE.InstancedMesh(cyl, mat, segments);
+      exec.count = s.times.length - 1;
+      const est = s.estimate.position[i];
+      const pos = new Float32Array(3 * est.length);
+      est.forEach((p, e) => pos.set([p[0] - this.cx, p[1] - this.cy, p[2]], 3 * e));
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+      const light = base.clone().lerp(new THREE.Color('#ffffff'), 0.3);
+      const dots = new THREE.Points(g, new THREE.PointsMaterial({ color: light, size: 3, sizeAttenuation: false }));
+      for (const o of [exec, dots]) o.frustumCulled = false;
+      this.scene.add(exec, dots);
+      tracks.push({ exec, dots, executed: s.executed[i], estimate: est });
+    }
+    return tracks;
+  }
+
+  // Shows or hides a layer: 'planned' (the planned paths), 'executed' (the executed tracks;
+  // the markers follow them while shown) or 'estimate' (the estimated tracks).
+  setLayer(name, on) {
+    this.layers[name] = on;
+    for (const v of this.vehicles) for (const m of [v.done, v.todo, v.joints]) m.visible = this.layers.planned;
+    for (const t of this.tracks) {
+      t.exec.visible = this.layers.executed;
+      t.dots.visible = this.layers.estimate;
+    }
+    this.setStep(this.step);
+  }
+
+  // Seconds since the start of the mission at global step g.
+  timeAt(g) {
+    const { w, k } = this.timeline[g];
+    return this.data.windows[w].start_time + k * this.data.dt;
+  }
+
+  // Position on `track` ([epoch] of [x, y, z]) at time t, linear between the sim's epochs.
+  simAt(track, t) {
+    const T = this.data.sim.times;
+    const n = T.length - 1;
+    if (n <= 0 || t <= T[0]) return track[0];
+    if (t >= T[n]) return track[n];
+    let lo = 0, hi = n;
+    while (hi - lo > 1) {
+      const m = (lo + hi) >> 1;
+      if (T[m] <= t) lo = m;
+      else hi = m;
+    }
+    const u = (t - T[lo]) / (T[hi] - T[lo]);
+    const a = track[lo], b = track[hi];
+    return [0, 1, 2].map((j) => a[j] + u * (b[j] - a[j]));
   }
 
   // One entry per vehicle: its points along the timeline and its meshes.
@@ -200,6 +265,12 @@ export class MissionScene {
       for (const im of [v.done, v.todo, v.joints]) im.instanceMatrix.needsUpdate = true;
       v.marker.scale.setScalar((v.usv ? 5 : 3.5) * r);
     }
+    for (const t of this.tracks) {
+      const pts = t.executed.map((p) => this.world(p));
+      for (let s = 0; s + 1 < pts.length; s++) t.exec.setMatrixAt(s, segmentMatrix(pts[s], pts[s + 1], 1.3 * r, m));
+      t.exec.instanceMatrix.needsUpdate = true;
+      t.dots.scale.z = e;
+    }
     this.setStep(this.step);
   }
 
@@ -210,7 +281,8 @@ export class MissionScene {
     for (const v of this.vehicles) {
       v.done.count = g;
       v.joints.count = g + 1;
-      v.marker.position.copy(this.world(v.points[g]));
+      const track = this.layers.executed && !v.usv && this.tracks[v.auv];
+      v.marker.position.copy(this.world(track ? this.simAt(track.executed, this.timeAt(g)) : v.points[g]));
       if (v.usv) v.marker.rotation.set(Math.PI / 2, 0, 0);
     }
     for (const kind of ['a2u', 'a2a']) for (const m of this.links[kind]) m.visible = false;

@@ -47,6 +47,16 @@ function legend() {
   for (let i = 0; i < data.auvs; i++) item(auvColor(data, i), `AUV ${i}`);
   item(COLORS.a2u, 'A2U link', 'bar');
   item(COLORS.a2a, 'A2A link', 'bar');
+  if (data.sim) {
+    const e = data.sim.estimate;
+    $('layers').hidden = false;
+    $('estimate-name').textContent = `(${e.policy}, ${e.estimator}, ${e.flown})`;
+    const dt = data.sim.times.length > 1 ? data.sim.times[1] - data.sim.times[0] : 0;
+    $('sim-note').textContent =
+      `simulation seed ${data.sim.seed}: ${data.sim.times.length} epochs every ${+dt.toFixed(3)} s; ` +
+      `estimate RMS error ${e.team_rmse_m.toFixed(2)} m. The AUV markers follow the executed ` +
+      'tracks while they are shown, else the planned paths.';
+  }
   const f = data.floor;
   $('depthbar').style.background = `linear-gradient(to right, ${DEPTH_STOPS.join(', ')})`;
   $('depth-lo').textContent = `${f.z_lo.toFixed(0)} m`;
@@ -183,6 +193,16 @@ function main() {
   });
 
   const state = { ready: false, step: 0, steps: timeline.length, exaggeration: auto, show, play, pause, scene };
+  state.layers = scene.layers;
+  state.setLayer = (name, on) => {
+    const box = $(`layer-${name}`);
+    if (box) box.checked = on;
+    scene.setLayer(name, on);
+  };
+  for (const name of ['planned', 'executed', 'estimate']) {
+    const box = $(`layer-${name}`);
+    box.addEventListener('change', () => scene.setLayer(name, box.checked));
+  }
   window.shoalViewer = state;
   const resize = () => {
     const side = $('side').getBoundingClientRect();

@@ -1,10 +1,13 @@
 //! What the viewer page needs from a plan, as one JSON object: the seafloor around the mission
 //! (cropped and downsampled), the final-stage paths of every window, the planned links per step,
-//! and the metrics. Nothing else of the plan is embedded.
+//! and the metrics. Nothing else of the plan is embedded. With a simulation (`shoal view
+//! --sim`), also each AUV's executed track and one estimate's track ([`SimData`]).
 
 use super::ViewerError;
 use crate::plan::{Link, Metrics, Plan, Window};
 use crate::seafloor::{Lattice, Seafloor};
+use crate::sim::policy::Policy;
+use crate::sim::SimRecord;
 use serde::Serialize;
 
 /// Largest number of mesh vertices along either axis of the floor sent to the page.
@@ -43,6 +46,110 @@ pub struct ViewerData {
     pub windows: Vec<WindowData>,
     /// The mission's metrics over every window (`Plan::metrics`).
     pub metrics: Metrics,
+    /// The simulated tracks, when the page shows a simulation; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sim: Option<SimData>,
+}
+
+/// The estimate the page shows by default: the planned chain's ranges, the factor graph, on the
+/// final stages' flight.
+pub const DEFAULT_ESTIMATE: (Policy, &str, &str) = (Policy::Chain, "factor_graph", "final");
+
+/// What the page shows of a simulation (`sim.json`): the executed positions and one estimate's,
+/// per AUV per epoch, rounded to 0.1 m.
+#[derive(Debug, Serialize)]
+pub struct SimData {
+    /// Seed of the simulation.
+    pub seed: u64,
+    /// Time of each epoch, seconds since the start of the mission, rounded to 1 ms.
+    pub times: Vec<f64>,
+    /// `[auv][epoch]`: executed positions \[x, y, z\], metres, rounded to 0.1 m.
+    pub executed: Vec<Vec<[f64; 3]>>,
+    /// The estimate shown.
+    pub estimate: EstimateData,
+}
+
+/// One estimate's track as the page shows it.
+#[derive(Debug, Serialize)]
+pub struct EstimateData {
+    /// Its policy: "dead_reckoning", "a2u", "chain" or "all_links".
+    pub policy: String,
+    /// Its estimator: "factor_graph" or "ekf".
+    pub estimator: String,
+    /// The flight it estimated: "final" or "step1".
+    pub flown: String,
+    /// RMS error over every AUV and epoch, metres.
+    pub team_rmse_m: f64,
+    /// `[auv][epoch]`: estimated positions \[x, y, z\], metres, rounded to 0.1 m.
+    pub position: Vec<Vec<[f64; 3]>>,
+}
+
+/// The simulated tracks of `sim` for a plan of `auvs` AUVs, with the estimate [`DEFAULT_ESTIMATE`].
+/// Fails with [`ViewerError::Sim`] when the simulation's team is not the plan's, the estimate is
+/// missing, or its arrays do not fit its epochs or hold non-finite values.
+pub fn sim(sim: &SimRecord, auvs: usize) -> Result<SimData, ViewerError> {
+    let bad = |why: String| Err(ViewerError::Sim(why));
+    if sim.auvs != auvs {
+        return bad(format!(
+            "it simulates {} AUVs, the plan has {auvs}",
+            sim.auvs
+        ));
+    }
+    let epochs = sim.times.len();
+    if epochs == 0 {
+        return bad("it has no epochs".into());
+    }
+    if !sim.times.iter().all(|t| t.is_finite()) || sim.times.windows(2).any(|t| t[1] <= t[0]) {
+        return bad("its epoch times are not finite and increasing".into());
+    }
+    let (policy, estimator, flown) = DEFAULT_ESTIMATE;
+    let Some(est) = sim
+        .estimates
+        .iter()
+        .find(|e| e.policy == policy && e.estimator == estimator && e.flown == flown)
+    else {
+        return bad(format!(
+            "it has no estimate with policy \"{}\", estimator \"{estimator}\", flown \"{flown}\"",
+            policy.name()
+        ));
+    };
+    let track = |what: &str, t: &[Vec<[f64; 3]>]| -> Result<Vec<Vec<[f64; 3]>>, ViewerError> {
+        if t.len() != auvs {
+            return Err(ViewerError::Sim(format!(
+                "{what} has {} AUVs, the plan {auvs}",
+                t.len()
+            )));
+        }
+        t.iter()
+            .enumerate()
+            .map(|(i, ps)| {
+                if ps.len() != epochs {
+                    return Err(ViewerError::Sim(format!(
+                        "{what} of AUV {i} has {} epochs, times {epochs}",
+                        ps.len()
+                    )));
+                }
+                if !ps.iter().flatten().all(|v| v.is_finite()) {
+                    return Err(ViewerError::Sim(format!(
+                        "{what} of AUV {i} has a non-finite position"
+                    )));
+                }
+                Ok(ps.iter().map(|p| p.map(dm)).collect())
+            })
+            .collect()
+    };
+    Ok(SimData {
+        seed: sim.seed,
+        times: sim.times.iter().map(|t| (t * 1e3).round() / 1e3).collect(),
+        executed: track("flight.executed", &sim.flight.executed)?,
+        estimate: EstimateData {
+            policy: policy.name().into(),
+            estimator: estimator.into(),
+            flown: flown.into(),
+            team_rmse_m: est.metrics.team_rmse_m,
+            position: track("the estimate's position", &est.position)?,
+        },
+    })
 }
 
 /// The floor mesh: `nx × ny` vertices at (x0 + i·dx, y0 + j·dy), row j = 0 southernmost.
@@ -98,6 +205,15 @@ pub struct WindowData {
 /// windows, or a window's final stage has missing or non-finite positions, or links that do
 /// not fit the team.
 pub fn build(plan: &Plan, floor: &Seafloor) -> Result<ViewerData, ViewerError> {
+    build_with_sim(plan, floor, None)
+}
+
+/// [`build`], with the tracks of `sim` (see [`sim`]) when given.
+pub fn build_with_sim(
+    plan: &Plan,
+    floor: &Seafloor,
+    sim_record: Option<&SimRecord>,
+) -> Result<ViewerData, ViewerError> {
     let n = plan.scenario.team.auvs;
     let windows = plan
         .windows
@@ -127,6 +243,7 @@ pub fn build(plan: &Plan, floor: &Seafloor) -> Result<ViewerData, ViewerError> {
         floor: floor_mesh(floor, &plan.seafloor.source, bounds(&windows), margin),
         windows,
         metrics: plan.metrics.clone(),
+        sim: sim_record.map(|r| sim(r, n)).transpose()?,
     })
 }
 
@@ -212,6 +329,10 @@ fn window(w: &Window, n: usize) -> Result<WindowData, ViewerError> {
 
 fn cm(v: f64) -> f64 {
     (v * 100.0).round() / 100.0
+}
+
+fn dm(v: f64) -> f64 {
+    (v * 10.0).round() / 10.0
 }
 
 /// [x_min, x_max, y_min, y_max] over every vehicle position.

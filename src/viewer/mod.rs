@@ -5,11 +5,15 @@
 //! The page works offline from `file://`: three.js (vendored under `assets/three/`, see its
 //! README) and the viewer's own modules are embedded as text and loaded from blob URLs through
 //! an import map; the plan data the page needs ([`data::ViewerData`]) is embedded as JSON.
+//! With a simulation (`shoal view --sim sim.json`), the page also shows each AUV's executed
+//! track and one estimate's, each a layer that can be hidden, and the markers follow the
+//! executed track.
 
 pub mod data;
 
 use crate::plan::Plan;
 use crate::seafloor::Seafloor;
+use crate::sim::SimRecord;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
@@ -36,6 +40,10 @@ pub enum ViewerError {
     /// or inconsistent positions or links; holds what is wrong.
     #[error("cannot show the plan: {0}")]
     Plan(String),
+    /// The simulation cannot be shown with the plan: another team, no such estimate, or arrays
+    /// that do not fit its epochs; holds what is wrong.
+    #[error("cannot show the simulation: {0}")]
+    Sim(String),
     /// Writing the HTML file failed.
     #[error(transparent)]
     Write(#[from] crate::output::OutputError),
@@ -54,20 +62,40 @@ pub enum ViewerError {
 
 /// Write the viewer of `plan` (on the floor it was planned on) to `out`, atomically.
 pub fn write_html(plan: &Plan, floor: &Seafloor, out: &Path) -> Result<(), ViewerError> {
+    write_html_with_sim(plan, floor, None, out)
+}
+
+/// [`write_html`], also showing the simulated flight `sim` of the plan when given: each AUV's
+/// executed track and the estimate [`data::DEFAULT_ESTIMATE`]'s.
+pub fn write_html_with_sim(
+    plan: &Plan,
+    floor: &Seafloor,
+    sim: Option<&SimRecord>,
+    out: &Path,
+) -> Result<(), ViewerError> {
     if out.is_dir() {
         return Err(ViewerError::Path {
             path: out.to_path_buf(),
             why: "it is a directory; give a file name such as mission.html".into(),
         });
     }
-    let html = render_html(plan, floor)?;
+    let html = render_html_with_sim(plan, floor, sim)?;
     crate::output::write_atomic(out, html.as_bytes())?;
     Ok(())
 }
 
 /// The viewer page of `plan` as one HTML document.
 pub fn render_html(plan: &Plan, floor: &Seafloor) -> Result<String, ViewerError> {
-    let data = data::build(plan, floor)?;
+    render_html_with_sim(plan, floor, None)
+}
+
+/// The viewer page of `plan` with the simulation `sim`, when given, as one HTML document.
+pub fn render_html_with_sim(
+    plan: &Plan,
+    floor: &Seafloor,
+    sim: Option<&SimRecord>,
+) -> Result<String, ViewerError> {
+    let data = data::build_with_sim(plan, floor, sim)?;
     let json = script_safe(&serde_json::to_string(&data)?);
     let modules = [
         ("three/core", THREE_CORE.to_string(), false),

@@ -1,6 +1,7 @@
 // Opens a `shoal view` HTML file from file:// in headless Chromium and checks it works:
 // no console errors, no page errors, no request leaving the file (works offline), a WebGL
-// canvas that is not blank, the plan's AUV colours in the legend, a time slider that changes the displayed step, and the play button.
+// canvas that is not blank, the plan's AUV colours in the legend, a time slider that changes the displayed step, and the play button;
+// with a simulation (`shoal view --sim`), the layer toggles of the executed and estimated tracks.
 // Saves a screenshot at the start (<shot>-start.png) and at mid-mission (<shot>).
 //
 //   node tests/viewer/check.mjs mission.html shot.png
@@ -117,6 +118,38 @@ try {
   if (links < 1) problems.push('no link listed at mid-mission');
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   await page.screenshot({ path: shot });
+
+  // With a simulation: the layer toggles hide and show the executed and estimated tracks, and
+  // the AUV markers follow the executed track while it is shown.
+  const sim = await page.evaluate(() => !!JSON.parse(document.getElementById('plan-data').textContent).sim);
+  if (sim) {
+    if (!(await page.locator('#layers').isVisible())) problems.push('the layer toggles are hidden');
+    const marker = () => page.evaluate(() => {
+      const v = window.shoalViewer.scene.vehicles.find((x) => x.auv === 0);
+      return v.marker.position.toArray();
+    });
+    const visible = () => page.evaluate(() => {
+      const t = window.shoalViewer.scene.tracks[0];
+      return { executed: t.exec.visible, estimate: t.dots.visible };
+    });
+    const onTrack = await marker();
+    for (const name of ['executed', 'estimate', 'planned']) {
+      await page.locator(`#layer-${name}`).uncheck();
+      await page.evaluate(() => new Promise((r) => requestAnimationFrame(r)));
+    }
+    const hidden = await visible();
+    if (hidden.executed || hidden.estimate) problems.push(`tracks still shown after unticking: ${JSON.stringify(hidden)}`);
+    const onPlan = await marker();
+    if (onTrack.every((v, i) => v === onPlan[i])) problems.push('the AUV marker did not leave the executed track');
+    for (const name of ['executed', 'estimate', 'planned']) await page.locator(`#layer-${name}`).check();
+    const shown = await visible();
+    if (!shown.executed || !shown.estimate) problems.push(`tracks hidden after ticking: ${JSON.stringify(shown)}`);
+    const back = await marker();
+    if (back.some((v, i) => Math.abs(v - onTrack[i]) > 1e-6)) problems.push('the AUV marker did not return to the executed track');
+    console.log(`layers: executed and estimated tracks toggled; marker ${onTrack.map((v) => v.toFixed(1))} on the track, ${onPlan.map((v) => v.toFixed(1))} on the plan`);
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await page.screenshot({ path: shot });
+  }
 
   // Play advances the step.
   await page.locator('#play').click();
