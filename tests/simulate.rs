@@ -208,3 +208,153 @@ fn monte_carlo_summarises_every_estimate_over_the_runs() {
     // the record is the first run's
     assert_eq!(r.seed, 5);
 }
+
+/// Writes a uniform ESRI ASCII grid of `value` over `bounds` ([x_min, x_max, y_min, y_max])
+/// widened by `pad` metres, nodes every `cell` metres; `nodata_at` marks one node NODATA.
+fn current_grid(
+    path: &std::path::Path,
+    bounds: [f64; 4],
+    pad: f64,
+    cell: f64,
+    value: f64,
+    nodata_at: Option<(usize, usize)>,
+) {
+    let x0 = (bounds[0] - pad).floor();
+    let y0 = (bounds[2] - pad).floor();
+    let nx = ((bounds[1] + pad - x0) / cell).ceil() as usize + 1;
+    let ny = ((bounds[3] + pad - y0) / cell).ceil() as usize + 1;
+    let l = shoal::seafloor::Lattice {
+        nx,
+        ny,
+        x0,
+        y0,
+        dx: cell,
+        dy: cell,
+    };
+    let mut nodata = vec![false; nx * ny];
+    if let Some((i, j)) = nodata_at {
+        nodata[j * nx + i] = true;
+    }
+    Seafloor::from_nodes(l, vec![value; nx * ny], nodata)
+        .unwrap()
+        .write_esri_ascii(path)
+        .unwrap();
+}
+
+/// The default plan with `[current]` grid files `u.asc` and `v.asc` (relative to the plan).
+fn with_current_files(plan: &shoal::Plan) -> shoal::Plan {
+    let mut p = plan.clone();
+    p.scenario.current.file_east = Some("u.asc".into());
+    p.scenario.current.file_north = Some("v.asc".into());
+    p
+}
+
+#[test]
+fn uniform_current_grids_fly_the_plan_as_the_uniform_current() {
+    use shoal::sim::current::{mission_bounds, CURRENT_MARGIN};
+    let (plan, floor) = default_plan();
+    let dir = tempfile::tempdir().unwrap();
+    let b = mission_bounds(plan, CURRENT_MARGIN);
+    let [u, v] = plan.scenario.current.velocity;
+    current_grid(&dir.path().join("u.asc"), b, 300.0, 100.0, u, None);
+    current_grid(&dir.path().join("v.asc"), b, 300.0, 100.0, v, None);
+    let p = with_current_files(plan);
+    let plan_name = dir.path().join("plan.json").display().to_string();
+    let r = simulate(&p, &plan_name, floor, 1).unwrap();
+    let (a, b) = (&r.flight.executed, &default_sim().flight.executed);
+    assert_eq!(a.len(), b.len());
+    for (pa, pb) in a.iter().zip(b) {
+        assert_eq!(pa.len(), pb.len());
+        for (x, y) in pa.iter().zip(pb) {
+            for k in 0..3 {
+                assert!((x[k] - y[k]).abs() <= 1e-9, "{x:?} vs {y:?}");
+            }
+        }
+    }
+    // the same files, resolved against the plan's directory: from elsewhere they are missing
+    let e = simulate(&p, "elsewhere/plan.json", floor, 1).unwrap_err();
+    assert!(e.to_string().contains("current.file_east"), "{e}");
+    assert!(e.to_string().contains("u.asc"), "{e}");
+}
+
+#[test]
+fn current_grids_that_miss_the_mission_or_disagree_are_refused_by_name() {
+    use shoal::sim::current::{mission_bounds, CURRENT_MARGIN};
+    let (plan, floor) = default_plan();
+    let dir = tempfile::tempdir().unwrap();
+    let plan_name = dir.path().join("plan.json").display().to_string();
+    let b = mission_bounds(plan, CURRENT_MARGIN);
+    let p = with_current_files(plan);
+    let (u, v) = (dir.path().join("u.asc"), dir.path().join("v.asc"));
+    let err = |p: &shoal::Plan| simulate(p, &plan_name, floor, 1).unwrap_err().to_string();
+
+    // the east grid covers only the west half of the mission
+    let half = [b[0], 0.5 * (b[0] + b[1]), b[2], b[3]];
+    current_grid(&u, half, 0.0, 50.0, 0.0, None);
+    current_grid(&v, b, 0.0, 50.0, 0.1, None);
+    let e = err(&p);
+    assert!(e.contains("current.file_east"), "{e}");
+    assert!(e.contains("covers"), "{e}");
+
+    // both cover it, on different lattices
+    current_grid(&u, b, 100.0, 50.0, 0.0, None);
+    current_grid(&v, b, 100.0, 40.0, 0.1, None);
+    let e = err(&p);
+    assert!(
+        e.contains("current.file_east") && e.contains("current.file_north") && e.contains("same"),
+        "{e}"
+    );
+
+    // NODATA in the mission
+    current_grid(&v, b, 100.0, 50.0, 0.1, Some((5, 5)));
+    let e = err(&p);
+    assert!(
+        e.contains("current.file_north") && e.contains("NODATA"),
+        "{e}"
+    );
+
+    // a speed beyond 3 m/s (the values in cm/s, say)
+    current_grid(&v, b, 100.0, 50.0, 10.0, None);
+    let e = err(&p);
+    assert!(e.contains("3 m/s"), "{e}");
+
+    // a file that is not there
+    std::fs::remove_file(&v).unwrap();
+    let e = err(&p);
+    assert!(
+        e.contains("current.file_north") && e.contains("v.asc"),
+        "{e}"
+    );
+}
+
+#[test]
+fn only_one_current_grid_file_is_refused() {
+    let (plan, floor) = default_plan();
+    let e = run::with_settings(plan, "plan.json", &["current.file_east=\"u.asc\"".into()])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("current.file_east") && e.contains("current.file_north"),
+        "{e}"
+    );
+    // and straight to the simulation (a plan edited by hand)
+    let mut p = plan.clone();
+    p.scenario.current.file_north = Some("v.asc".into());
+    let e = simulate(&p, "plan.json", floor, 1).unwrap_err().to_string();
+    assert!(
+        e.contains("current.file_north") && e.contains("current.file_east"),
+        "{e}"
+    );
+    // a file that is not a grid
+    let e = run::with_settings(
+        plan,
+        "plan.json",
+        &[
+            "current.file_east=\"u.txt\"".into(),
+            "current.file_north=\"v.asc\"".into(),
+        ],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("current.file_east"), "{e}");
+}

@@ -18,6 +18,8 @@ pub(crate) const EXAMPLE_FLOOR_FILE: &str = "bathymetry.tif";
 pub(crate) const EXAMPLE_ORIGIN: [f64; 2] = [43.2, 5.3];
 /// Example CRS shown (commented out) for `seafloor.crs`.
 pub(crate) const EXAMPLE_CRS: &str = "EPSG:4326";
+/// Example paths shown (commented out) for `current.file_east` and `current.file_north`.
+pub(crate) const EXAMPLE_CURRENT_FILES: [&str; 2] = ["current_u.asc", "current_v.asc"];
 
 /// An `[initial]` block valid for `s`: the AUVs evenly spread on a circle of radius d_s/2 around
 /// the origin (where the USV starts), halfway between the surface and the shallowest synthetic
@@ -53,6 +55,8 @@ pub(crate) fn full_default() -> Scenario {
     s.seafloor.file = Some(EXAMPLE_FLOOR_FILE.to_string());
     s.seafloor.origin = Some(EXAMPLE_ORIGIN);
     s.seafloor.crs = Some(EXAMPLE_CRS.to_string());
+    s.current.file_east = Some(EXAMPLE_CURRENT_FILES[0].to_string());
+    s.current.file_north = Some(EXAMPLE_CURRENT_FILES[1].to_string());
     // the converged run's settings, for Step 1 alone
     s.scp.step1_tolerance = Some(1e-7);
     s.scp.step1_max_iterations = Some(300);

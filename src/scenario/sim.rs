@@ -15,6 +15,15 @@ pub struct Current {
     /// is `velocity` times the factor interpolated linearly in d (held beyond the ends).
     /// Empty: the same at every depth.
     pub profile: Vec<[f64; 2]>,
+    /// Grid file of the current's east component u(x, y) at the surface, m/s (ESRI ASCII or
+    /// GeoTIFF, in the planner's frame; a relative path is from the plan file's directory).
+    /// With `file_north`, the grids replace `velocity`; both or neither.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file_east: Option<String>,
+    /// Grid file of the current's north component v(x, y) at the surface, m/s (see
+    /// `file_east`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file_north: Option<String>,
 }
 
 impl Default for Current {
@@ -24,6 +33,8 @@ impl Default for Current {
             // the default mission's first course (east), so that tracking it shows
             velocity: [0.0, 0.1],
             profile: Vec::new(),
+            file_east: None,
+            file_north: None,
         }
     }
 }

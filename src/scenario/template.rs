@@ -297,7 +297,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "current" => {
             "The ocean current `shoal simulate` flies the plan in (ours; the planner does not \
-             know it): horizontal, constant in time, the same everywhere at a given depth."
+             know it): horizontal, constant in time; uniform at each depth (velocity), or \
+             varying in x and y from two grid files (file_east, file_north)."
         }
         "current.velocity" => {
             "[east, north] velocity at the surface, m/s (default: a weak 0.1 m/s tidal current, \
@@ -308,6 +309,19 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Depth profile: [[depth, factor], …], depths in metres (≥ 0, increasing), the \
              current at depth d being velocity × the factor interpolated in d (held beyond the \
              ends), e.g. [[0, 1.0], [100, 0.3]]. Empty: uniform. Factors finite, |factor| ≤ 10."
+        }
+        "current.file_east" => {
+            "Grid file of the current's east component u(x, y), m/s (read by `shoal simulate`; \
+             relative paths from the plan file's directory): ESRI ASCII (.asc) or \
+             GeoTIFF (.tif, .tiff), in the planner's frame (metres; not geographic). With \
+             file_north the grids replace velocity: the current at (x, y, depth d) is [u, v] \
+             interpolated bilinearly, times the profile's factor at d. Both or neither; the \
+             grids must share one lattice, cover the mission with a 200 m margin, with no \
+             NODATA there and speeds ≤ 3 m/s."
+        }
+        "current.file_north" => {
+            "Grid file of the current's north component v(x, y), m/s, on the same lattice as \
+             file_east (see there)."
         }
         "navigation" => {
             "The sensors and acoustic modems of `shoal simulate` (ours; each default a typical \

@@ -556,6 +556,45 @@ fn sim(c: &mut Checker, s: &Scenario) {
             &[],
         );
     }
+    if cur.file_east.is_some() != cur.file_north.is_some() {
+        let (given, f, missing) = match (&cur.file_east, &cur.file_north) {
+            (Some(f), _) => ("current.file_east", f.as_str(), "current.file_north"),
+            (_, f) => (
+                "current.file_north",
+                f.as_deref().unwrap_or(""),
+                "current.file_east",
+            ),
+        };
+        c.push(
+            given,
+            format!("{f:?}"),
+            format!(
+                "needs {missing} too: the current's grid files come as a pair (its east and \
+                 north components), both or neither"
+            ),
+            &[missing],
+        );
+    }
+    for (key, f) in [
+        ("current.file_east", &cur.file_east),
+        ("current.file_north", &cur.file_north),
+    ] {
+        if let Some(f) = f {
+            if f.trim().is_empty()
+                || crate::seafloor::GridFormat::from_path(std::path::Path::new(f)).is_none()
+            {
+                c.push(
+                    key,
+                    format!("{f:?}"),
+                    "must be the path of a grid file: an ESRI ASCII grid (.asc) or a GeoTIFF \
+                     (.tif, .tiff) (leave both current.file_east and current.file_north out for \
+                     a current uniform at each depth)"
+                        .to_string(),
+                    &[],
+                );
+            }
+        }
+    }
     for (i, p) in cur.profile.iter().enumerate() {
         let after = i == 0 || p[0] > cur.profile[i - 1][0];
         if !(p[0].is_finite() && p[0] >= 0.0 && after && p[1].is_finite() && p[1].abs() <= 10.0) {

@@ -68,10 +68,7 @@ const USV_Z_SIGMA: f64 = 0.01;
 /// covariance.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Start {
-    /// Whether the stretch continues an earlier one whose estimate of this epoch `positions`
-    /// are: then the epoch's own measurements are not used again.
-    pub continues: bool,
-    /// `[vehicle]`: position mean and covariance (the AUVs; the USV too when `continues`).
+    /// `[auv]`: position mean and covariance.
     pub positions: Vec<([f64; 3], Cov3)>,
     /// `[auv]`: bias mean and covariance (None: the biases are not estimated).
     pub biases: Vec<Option<BiasEstimate>>,
@@ -117,32 +114,25 @@ pub fn problem(
             });
         }
     }
-    // a stretch that continues another starts from that stretch's estimate of its first
-    // epoch, which already holds that epoch's fixes, depths and ranges: they are not used twice
-    let fresh = |e: usize| e > first || !start.continues;
     for e in first..=last {
         let g = m.gps[e];
-        if fresh(e) {
-            p.priors.push(Prior {
+        p.priors.push(Prior {
+            node: Node {
+                vehicle: usv,
+                epoch: e - first,
+            },
+            mean: [g[0], g[1], 0.0],
+            cov: diag([nav.gps_noise, nav.gps_noise, USV_Z_SIGMA]),
+        });
+        for v in 0..n {
+            p.depths.push(Depth {
                 node: Node {
-                    vehicle: usv,
+                    vehicle: v,
                     epoch: e - first,
                 },
-                mean: [g[0], g[1], 0.0],
-                cov: diag([nav.gps_noise, nav.gps_noise, USV_Z_SIGMA]),
+                z: m.depth[v][e],
+                sigma: nav.depth_noise.max(1e-3),
             });
-        }
-        for v in 0..n {
-            if fresh(e) {
-                p.depths.push(Depth {
-                    node: Node {
-                        vehicle: v,
-                        epoch: e - first,
-                    },
-                    z: m.depth[v][e],
-                    sigma: nav.depth_noise.max(1e-3),
-                });
-            }
             if e < last {
                 let inc = &m.odometry[v][e];
                 p.odometry.push(Odometry {
@@ -160,7 +150,7 @@ pub fn problem(
     }
     if policy != Policy::DeadReckoning {
         let per_epoch = (n + 1) * n / 2;
-        for e in (first..=last).filter(|&e| fresh(e)) {
+        for e in first..=last {
             let links = planned(e);
             for ping in &m.pings[e * per_epoch..(e + 1) * per_epoch] {
                 if policy.uses(ping, &links, usv) {
@@ -191,7 +181,6 @@ pub fn initial_start(m: &Measurements, nav: &Navigation) -> Start {
     let beta = nav.heading_bias.max(1e-6);
     let scale = nav.dvl_scale.max(1e-6);
     Start {
-        continues: false,
         positions: m.initial.iter().map(|p| (*p, diag([s, s, s]))).collect(),
         biases: m
             .initial

@@ -63,6 +63,8 @@ fn template_values_come_from_default() {
     assert!(text.contains("# file = \"bathymetry.tif\""));
     assert!(text.contains("# origin = [43.2, 5.3]"));
     assert!(text.contains("# crs = \"EPSG:4326\""));
+    assert!(text.contains("# file_east = \"current_u.asc\""));
+    assert!(text.contains("# file_north = \"current_v.asc\""));
     assert!(text.contains("values = \"elevation\""));
     assert!(text.contains("# [initial]"));
 }

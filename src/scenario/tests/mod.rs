@@ -109,6 +109,8 @@ fn template_uncommented() -> String {
             "# crs = ",
             "# step1_tolerance = ",
             "# step1_max_iterations = ",
+            "# file_east = ",
+            "# file_north = ",
             "# [initial]",
             "# usv = ",
             "# auvs = ",
@@ -123,6 +125,8 @@ fn template_uncommented() -> String {
             "# crs = ",
             "# step1_tolerance = ",
             "# step1_max_iterations = ",
+            "# file_east = ",
+            "# file_north = ",
         ]
         .iter()
         .any(|p| line.starts_with(p));
