@@ -404,3 +404,45 @@ pub struct ScpIteration {
     /// Clarabel's solve time for the subproblem, seconds.
     pub solver_time_s: f64,
 }
+
+/// The bounding box [x_min, x_max, y_min, y_max] of the finite points among `points`; None
+/// when there is none.
+pub fn bbox(points: impl IntoIterator<Item = [f64; 2]>) -> Option<[f64; 4]> {
+    let b = points
+        .into_iter()
+        .filter(|p| p[0].is_finite() && p[1].is_finite())
+        .fold(
+            [
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ],
+            |b, p| {
+                [
+                    b[0].min(p[0]),
+                    b[1].max(p[0]),
+                    b[2].min(p[1]),
+                    b[3].max(p[1]),
+                ]
+            },
+        );
+    (b[0] <= b[1]).then_some(b)
+}
+
+impl Plan {
+    /// The horizontal positions of every vehicle in every window's Step 1 and final stages
+    /// (the initial state is their first), metres.
+    pub fn positions(&self) -> impl Iterator<Item = [f64; 2]> + '_ {
+        self.windows.iter().flat_map(|w| {
+            [&w.step1, &w.final_].into_iter().flat_map(|st| {
+                let usv = st.usv.position.iter().copied();
+                let auvs = st
+                    .auvs
+                    .iter()
+                    .flat_map(|a| a.position.iter().map(|p| [p[0], p[1]]));
+                usv.chain(auvs)
+            })
+        })
+    }
+}

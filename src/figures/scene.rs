@@ -162,32 +162,10 @@ impl<'a> Scene<'a> {
 
     /// [x_min, x_max, y_min, y_max] of every vehicle in both stages, metres.
     pub fn bbox(&self) -> [f64; 4] {
-        let mut b = [
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        let mut add = |x: f64, y: f64| {
-            if x.is_finite() && y.is_finite() {
-                b = [b[0].min(x), b[1].max(x), b[2].min(y), b[3].max(y)];
-            }
-        };
-        for s in [Stage::Step1, Stage::Final] {
-            for p in self.usv_path(s) {
-                add(p[0], p[1]);
-            }
-            for n in 0..self.n {
-                for p in self.auv_path(s, n) {
-                    add(p[0], p[1]);
-                }
-            }
-        }
-        if b[0] > b[1] {
+        crate::plan::bbox(self.plan.positions()).unwrap_or_else(|| {
             let e = self.floor.extent();
-            return [e.x_min, e.x_max, e.y_min, e.y_max];
-        }
-        b
+            [e.x_min, e.x_max, e.y_min, e.y_max]
+        })
     }
 
     /// Length of a link at (window, k) in a stage: AUV to AUV, or AUV to the USV at z = 0.

@@ -79,17 +79,8 @@ impl<'a> Tracks<'a> {
         let stride = nice_at_least(epochs as f64 / ELLIPSES) as usize;
         let f = &sim.flight;
         // The data: every path, and every ellipse drawn at its size.
-        let mut b = [
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        let mut add = |x: f64, y: f64| {
-            if x.is_finite() && y.is_finite() {
-                b = [b[0].min(x), b[1].max(x), b[2].min(y), b[3].max(y)];
-            }
-        };
+        let mut points: Vec<[f64; 2]> = Vec::new();
+        let mut add = |x: f64, y: f64| points.push([x, y]);
         for p in f.executed.iter().chain(&f.planned).flatten() {
             add(p[0], p[1]);
         }
@@ -112,7 +103,7 @@ impl<'a> Tracks<'a> {
         }
         let e = scene.floor.extent();
         let extent = [e.x_min, e.x_max, e.y_min, e.y_max];
-        let data = if b[0] <= b[1] { map::pad(b) } else { extent };
+        let data = crate::plan::bbox(points).map_or(extent, map::pad);
         let (view, plot) = map::fit(data, extent);
         // Enlarge the ellipses when the typical one would be a speck.
         majors.sort_by(f64::total_cmp);

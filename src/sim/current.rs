@@ -246,37 +246,16 @@ impl CurrentField {
 /// final and Step 1 paths, the AUVs' and the USV's, and the initial state), widened by
 /// `margin` metres.
 pub fn mission_bounds(plan: &Plan, margin: f64) -> [f64; 4] {
-    let mut b = [
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    ];
-    let mut add = |x: f64, y: f64| {
-        if x.is_finite() && y.is_finite() {
-            b = [b[0].min(x), b[1].max(x), b[2].min(y), b[3].max(y)];
-        }
-    };
-    add(plan.initial.usv[0], plan.initial.usv[1]);
-    for a in &plan.initial.auvs {
-        add(a.position[0], a.position[1]);
+    let initial = std::iter::once(plan.initial.usv).chain(
+        plan.initial
+            .auvs
+            .iter()
+            .map(|a| [a.position[0], a.position[1]]),
+    );
+    match crate::plan::bbox(initial.chain(plan.positions())) {
+        Some(b) => [b[0] - margin, b[1] + margin, b[2] - margin, b[3] + margin],
+        None => [f64::NAN; 4],
     }
-    for w in &plan.windows {
-        for stage in [&w.final_, &w.step1] {
-            for p in &stage.usv.position {
-                add(p[0], p[1]);
-            }
-            for a in &stage.auvs {
-                for p in &a.position {
-                    add(p[0], p[1]);
-                }
-            }
-        }
-    }
-    if b[0] > b[1] {
-        return [f64::NAN; 4];
-    }
-    [b[0] - margin, b[1] + margin, b[2] - margin, b[3] + margin]
 }
 
 fn pair(given: &'static str, path: &str, missing: &'static str) -> CurrentError {
