@@ -89,7 +89,7 @@ fn unconverged(windows: &[Window], s: &Scenario) -> Vec<String> {
                 None => format!("scp.tolerance = {}", scp.tolerance),
             };
             let why = match st.status.as_str() {
-                "converged" => continue,
+                "converged" | crate::plan::SAMPLED => continue,
                 "max_iterations" => format!(
                     "stopped at {limit} before its predicted decrease fell below {tolerance}"
                 ),

@@ -118,6 +118,33 @@ pub enum PlanError {
     /// The SCP loop itself failed.
     #[error(transparent)]
     Scp(#[from] ScpFailure),
+    /// The RRT-like baseline (`shoal plan --method rrt-like`) found no valid sample from any
+    /// node of its tree at one step.
+    #[error(
+        "the RRT-like tree found no valid team sample at window {window}, step {k}: {nodes} \
+         node(s) drew {drawn} vehicle samples, rejected by {why}; raise sampling.attempts or \
+         sampling.samples, or ease the constraint named"
+    )]
+    NoValidTree {
+        /// The window (0-based).
+        window: usize,
+        /// The step k (1..=K) at which every sample failed.
+        k: usize,
+        /// Nodes of the tree at step k − 1.
+        nodes: usize,
+        /// Vehicle draws made at step k.
+        drawn: u64,
+        /// The constraints that rejected the draws, most first, with their counts.
+        why: String,
+    },
+    /// A waypoints file (`shoal plan --waypoints`) cannot be read or does not fit the scenario.
+    #[error("{path}: {why}")]
+    Waypoints {
+        /// The file.
+        path: String,
+        /// What is wrong, naming the field.
+        why: String,
+    },
 }
 
 fn culprit_text(c: &Option<String>) -> String {

@@ -37,6 +37,7 @@
 pub mod advice;
 mod atomic_file;
 pub mod check;
+pub mod compare;
 pub mod error;
 pub mod figures;
 pub mod mission;
@@ -46,6 +47,7 @@ pub mod plan;
 pub mod planner;
 pub mod positions;
 pub mod report;
+pub mod sampling;
 pub mod scenario;
 pub mod seafloor;
 pub mod sim;

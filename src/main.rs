@@ -19,6 +19,24 @@ struct Cli {
     command: Command,
 }
 
+/// The planners of `shoal plan --method`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Method {
+    /// Algorithm 1: Steps 1–3 by sequential convex programming.
+    Mpc,
+    /// The paper's RRT-like sampling baseline (Section V).
+    RrtLike,
+}
+
+impl Method {
+    fn study(self) -> shoal::compare::Method {
+        match self {
+            Method::Mpc => shoal::compare::Method::Mpc,
+            Method::RrtLike => shoal::compare::Method::RrtLike,
+        }
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Write the default scenario as a commented TOML file.
@@ -57,6 +75,14 @@ enum Command {
         /// check's verdict, the warnings, the mission's and each window's metrics.
         #[arg(long)]
         json: bool,
+        /// The planner: "mpc", Algorithm 1 (Steps 1–3 by sequential convex programming), or
+        /// "rrt-like", the paper's sampling baseline of Section V (settings in [sampling]).
+        #[arg(long, value_enum, default_value_t = Method::Mpc)]
+        method: Method,
+        /// Make the plan from another planner's waypoints instead (a shoal-waypoints/1 file,
+        /// e.g. from scripts/ompl_rrt_star.py), for the same scenario; checked like any plan.
+        #[arg(long, value_name = "FILE", conflicts_with = "method")]
+        waypoints: Option<PathBuf>,
     },
     /// Verify every constraint of a plan from the plan file and the seafloor alone.
     Check {
@@ -130,6 +156,40 @@ enum Command {
         #[arg(long)]
         seafloor: Option<PathBuf>,
         /// Do not draw the figures (sim-error, sim-tracks) into `figures` beside sim.json.
+        #[arg(long)]
+        no_plot: bool,
+    },
+    /// Plan the same scenarios with the MPC and the paper's RRT-like baseline (team sizes ×
+    /// seeds × scenarios), check every plan, and write runs.csv, summary.md and the figure
+    /// compare.png/.svg: wall time, objective terms, constraint margins, explored area.
+    Compare {
+        /// Scenario files (TOML), one per floor; "default" is the embedded default. Default:
+        /// the embedded default alone.
+        scenarios: Vec<String>,
+        /// Override one key of every scenario (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Team sizes N.
+        #[arg(long, value_delimiter = ',', default_value = "1,3,5")]
+        auvs: Vec<usize>,
+        /// Seeds: a list (1,4,7) or a range (1-10).
+        #[arg(long, default_value = "1-10")]
+        seeds: String,
+        /// The planners compared.
+        #[arg(
+            long,
+            value_enum,
+            value_delimiter = ',',
+            default_value = "mpc,rrt-like"
+        )]
+        methods: Vec<Method>,
+        /// Output directory.
+        #[arg(short, long, default_value = "compare")]
+        out: PathBuf,
+        /// Also write every run's plan.json into OUT/plans.
+        #[arg(long)]
+        keep_plans: bool,
+        /// Do not draw the figure.
         #[arg(long)]
         no_plot: bool,
     },
@@ -247,6 +307,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             no_plot,
             quiet,
             json,
+            method,
+            waypoints,
         } => {
             let flag = seafloor.map(|f| {
                 let text = format!("seafloor.file={}", toml_string(&f));
@@ -266,6 +328,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 figures: !no_plot,
                 quiet,
                 json,
+                method,
+                waypoints,
             };
             plan(&s, source, set, scenario.as_deref(), &out, how)
         }
@@ -331,6 +395,25 @@ fn run(cli: Cli) -> Result<ExitCode> {
             seafloor.as_deref(),
             !no_plot,
         ),
+        Command::Compare {
+            scenarios,
+            set,
+            auvs,
+            seeds,
+            methods,
+            out,
+            keep_plans,
+            no_plot,
+        } => {
+            let seeds = seed_list(&seeds).map_err(|e| anyhow::anyhow!("--seeds {seeds}: {e}"))?;
+            let study = shoal::compare::Study {
+                bases: compare_bases(&scenarios, &set)?,
+                methods: methods.iter().map(|m| m.study()).collect(),
+                auvs,
+                seeds,
+            };
+            compare(&study, &out, keep_plans, !no_plot)
+        }
         Command::Export { plan, out, csv } => {
             let csv = out.or(csv).expect("clap requires OUT.csv or --csv");
             let p = shoal::output::read_plan(&plan)?;
@@ -589,6 +672,10 @@ struct How {
     quiet: bool,
     /// A JSON summary on stdout instead of the tables.
     json: bool,
+    /// The planner.
+    method: Method,
+    /// Another planner's waypoints file, instead of planning.
+    waypoints: Option<PathBuf>,
 }
 
 /// Progress on stderr: a line per step, and on a terminal a spinner with the SCP iteration,
@@ -676,6 +763,15 @@ impl Report {
         }
     }
 
+    /// A step of the RRT-like tree has ended.
+    fn sampled(&self, done: shoal::sampling::StepDone) {
+        let st = done.step;
+        self.line(format!(
+            "  window {}: step k = {}: {} draws, {} valid team samples, {} nodes kept, {:.3} s",
+            done.window, done.k, st.drawn, st.valid, st.kept, st.time_s
+        ));
+    }
+
     fn finish(&self) {
         if let Some(b) = &self.bar {
             b.finish_and_clear();
@@ -716,10 +812,19 @@ fn plan(
         "planning {} window(s): N = {} AUVs, K = {} steps of δ = {} s, seed {}",
         s.windows, s.team.auvs, s.horizon.steps, s.horizon.dt, s.seed
     ));
-    let planned = shoal::Planner::new(s, &floor)
-        .provenance(provenance)
-        .on_progress(|event| report.event(event))
-        .run();
+    let planned = match (&how.waypoints, how.method) {
+        (Some(path), _) => shoal::sampling::waypoints::read(path).and_then(|file| {
+            let name = path.display().to_string();
+            shoal::sampling::waypoints::plan(s, &floor, &provenance, &file, &name)
+        }),
+        (None, Method::RrtLike) => {
+            shoal::sampling::plan(s, &floor, &provenance, &mut |done| report.sampled(done))
+        }
+        (None, Method::Mpc) => shoal::Planner::new(s, &floor)
+            .provenance(provenance)
+            .on_progress(|event| report.event(event))
+            .run(),
+    };
     report.finish();
     let plan = planned?;
     let tables = !how.quiet && !how.json;
@@ -810,4 +915,112 @@ fn json_summary(
         "windows": windows,
     }))
     .expect("a summary serialises")
+}
+
+/// "1-10" or "1,4,7" as a list of seeds.
+fn seed_list(text: &str) -> Result<Vec<u64>, String> {
+    let num = |t: &str| {
+        t.trim()
+            .parse::<u64>()
+            .map_err(|_| format!("\"{t}\" is not a whole number"))
+    };
+    let seeds = match text.split_once('-') {
+        Some((a, b)) => {
+            let (a, b) = (num(a)?, num(b)?);
+            if a > b {
+                return Err(format!("the range runs backwards ({a} > {b})"));
+            }
+            (a..=b).collect()
+        }
+        None => text.split(',').map(num).collect::<Result<Vec<_>, _>>()?,
+    };
+    Ok(seeds)
+}
+
+/// The study's bases: each scenario file (or "default") with `set` applied.
+fn compare_bases(scenarios: &[String], set: &[String]) -> Result<Vec<shoal::compare::Base>> {
+    let names: Vec<String> = match scenarios.is_empty() {
+        true => vec!["default".into()],
+        false => scenarios.to_vec(),
+    };
+    names
+        .iter()
+        .map(|name| {
+            let path = (name != "default").then(|| Path::new(name));
+            let (scenario, _) = load_scenario(path, set)?;
+            let stem = path
+                .and_then(|p| p.file_stem())
+                .map_or("default".into(), |s| s.to_string_lossy().into_owned());
+            Ok(shoal::compare::Base {
+                name: stem,
+                scenario,
+                dir: base_dir(path).to_path_buf(),
+            })
+        })
+        .collect()
+}
+
+/// `shoal compare`: run the study, print a line per run and the summary, write the outputs.
+fn compare(
+    study: &shoal::compare::Study,
+    out: &Path,
+    keep_plans: bool,
+    figure: bool,
+) -> Result<ExitCode> {
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let total = study.runs();
+    let mut kept = Vec::new();
+    let rows = shoal::compare::run(study, &mut |i, planned| {
+        let r = &planned.row;
+        eprintln!(
+            "[{}/{total}] {} {} N = {} seed {}: {} in {:.2} s{}",
+            i + 1,
+            r.scenario,
+            r.method,
+            r.auvs,
+            r.seed,
+            r.status,
+            r.wall_s,
+            match r.error.is_empty() {
+                true => String::new(),
+                false => format!(" ({})", r.error),
+            }
+        );
+        if let (true, Some(plan)) = (keep_plans, &planned.plan) {
+            let name = format!("{}-{}-n{}-s{}.json", r.scenario, r.method, r.auvs, r.seed);
+            kept.push((name, plan.clone()));
+        }
+    })?;
+    for (name, plan) in &kept {
+        shoal::output::write_plan(plan, &out.join("plans").join(name))?;
+    }
+    let mut csv = csv::Writer::from_writer(Vec::new());
+    for r in &rows {
+        csv.serialize(r).context("writing runs.csv")?;
+    }
+    let bytes = csv.into_inner().context("writing runs.csv")?;
+    shoal::output::write_atomic(&out.join("runs.csv"), &bytes)?;
+    let table = shoal::compare::markdown(&shoal::compare::summary(&rows));
+    shoal::output::write_atomic(&out.join("summary.md"), table.as_bytes())?;
+    println!("{table}");
+    if figure {
+        let title = format!(
+            "{}, {} runs",
+            study
+                .methods
+                .iter()
+                .map(|m| m.name())
+                .collect::<Vec<_>>()
+                .join(" vs "),
+            rows.len()
+        );
+        shoal::figures::write_compare(&rows, &title, out)?;
+    }
+    println!(
+        "wrote {} and {}{}",
+        out.join("runs.csv").display(),
+        out.join("summary.md").display(),
+        if figure { " and compare.png/.svg" } else { "" }
+    );
+    Ok(ExitCode::SUCCESS)
 }

@@ -198,16 +198,18 @@ fn position_problem(floor: &Seafloor, x: f64, y: f64) -> Option<String> {
     }
 }
 
-/// Algorithm 1, line 5: USV at the origin; AUVs at seeded random points in the half ball of
-/// radius d_s below it, at least surface_clearance below the surface and ε above the floor's
-/// keep-out field `keep_out` (`Seafloor::keep_out`: the floor itself away from obstacles), at
-/// rest. Or the explicit `[initial]` of the scenario.
+/// Algorithm 1, line 5: USV at the origin (or at `initial.usv` when `[initial]` lists no AUV);
+/// AUVs at seeded random points in the half ball of radius d_s below it, at least
+/// surface_clearance below the surface and ε above the floor's keep-out field `keep_out`
+/// (`Seafloor::keep_out`: the floor itself away from obstacles), at rest. Or the explicit
+/// `[initial]` of the scenario.
 pub fn initial_state(
     s: &Scenario,
     floor: &Seafloor,
     keep_out: &Seafloor,
 ) -> Result<InitialState, PlanError> {
-    if let Some(init) = &s.initial {
+    let usv = s.initial.as_ref().map_or([0.0, 0.0], |init| init.usv);
+    if let Some(init) = s.initial.as_ref().filter(|init| !init.auvs.is_empty()) {
         return Ok(InitialState {
             origin: "explicit".into(),
             usv: init.usv,
@@ -221,7 +223,7 @@ pub fn initial_state(
                 .collect(),
         });
     }
-    if let Some(why) = position_problem(floor, 0.0, 0.0) {
+    if let Some(why) = position_problem(floor, usv[0], usv[1]) {
         return Err(PlanError::InvalidStart {
             window: 0,
             why: format!(
@@ -237,14 +239,15 @@ pub fn initial_state(
     for n in 0..s.team.auvs {
         let mut found = None;
         for _ in 0..TRIES {
-            let p = [
+            let d = [
                 rng.gen_range(-ds..ds),
                 rng.gen_range(-ds..ds),
                 rng.gen_range(-ds..0.0),
             ];
-            if p.iter().map(|c| c * c).sum::<f64>() > ds * ds || p[2] > -s.auv.surface_clearance {
+            if d.iter().map(|c| c * c).sum::<f64>() > ds * ds || d[2] > -s.auv.surface_clearance {
                 continue;
             }
+            let p = [usv[0] + d[0], usv[1] + d[1], d[2]];
             if !floor.contains(p[0], p[1]) || floor.is_obstacle(p[0], p[1])? {
                 continue;
             }
@@ -254,7 +257,7 @@ pub fn initial_state(
             }
         }
         let Some(p) = found else {
-            let z0 = floor.elevation(0.0, 0.0).unwrap_or(f64::NAN);
+            let z0 = floor.elevation(usv[0], usv[1]).unwrap_or(f64::NAN);
             return Err(PlanError::NoInitialPosition(format!(
                 "no point for AUV {n} in {TRIES} draws within d_s = {ds} m of the USV, at least \
                  {} m below the surface and {} m above the floor (floor under the USV: z = {z0:.1} m)",
@@ -268,7 +271,7 @@ pub fn initial_state(
     }
     Ok(InitialState {
         origin: "seeded".into(),
-        usv: [0.0, 0.0],
+        usv,
         auvs,
     })
 }
@@ -280,15 +283,18 @@ pub fn initial_state(
 /// factor 2 covers the path between samples), plus d_max and the swath width.
 pub fn mission_area(s: &Scenario) -> [f64; 4] {
     let mut pts: Vec<[f64; 2]> = Vec::new();
+    let d = s.acoustic.sonar_range;
     match &s.initial {
-        Some(init) => {
+        Some(init) if !init.auvs.is_empty() => {
             pts.push(init.usv);
             pts.extend(init.auvs.iter().map(|p| [p[0], p[1]]));
         }
-        None => {
-            let d = s.acoustic.sonar_range;
-            pts.extend([[-d, -d], [d, d]]);
+        // AUVs drawn within d_s of the USV's start
+        Some(init) => {
+            let [x, y] = init.usv;
+            pts.extend([[x - d, y - d], [x + d, y + d]]);
         }
+        None => pts.extend([[-d, -d], [d, d]]),
     }
     let span = (s.windows * s.horizon.steps) as f64 * s.horizon.dt;
     let reach = 2.0 * span * s.auv.max_speed.max(s.usv.max_speed)

@@ -10,6 +10,15 @@ use serde::{Deserialize, Serialize};
 /// Value of the `format` field of every plan this version writes.
 pub const FORMAT: &str = "shoal-plan/4";
 
+/// `Plan::method` of Algorithm 1's plans (Steps 1–3 by sequential convex programming).
+pub const METHOD_MPC: &str = "mpc";
+/// `Plan::method` of the paper's RRT-like sampling baseline (Section V, `src/sampling/`).
+pub const METHOD_RRT_LIKE: &str = "rrt-like";
+
+fn method_mpc() -> String {
+    METHOD_MPC.into()
+}
+
 /// A plan as `shoal plan` writes it to `plan.json`: the resolved scenario, the floor, the
 /// models, the initial state and every window's stages, graph, links and metrics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -18,6 +27,11 @@ pub struct Plan {
     pub format: String,
     /// Version of shoal that wrote the plan.
     pub shoal_version: String,
+    /// Which planner made the plan: [`METHOD_MPC`] (Algorithm 1, the default), [`METHOD_RRT_LIKE`]
+    /// (the paper's sampling baseline, `src/sampling/`) or the `method` of a waypoints file
+    /// (`shoal plan --waypoints`, e.g. "ompl-rrtstar"). Plans written before it read as "mpc".
+    #[serde(default = "method_mpc")]
+    pub method: String,
     /// Where the scenario came from: "embedded default" or the path of the file.
     pub scenario_source: String,
     /// Overrides given with `--set`, in order, as "key=value".
@@ -132,6 +146,44 @@ pub struct Window {
     pub links: LinkReport,
     /// This window's metrics, over its final stage.
     pub metrics: Metrics,
+    /// How a sampling planner found the window's paths (absent in the MPC's plans).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sampling: Option<SamplingReport>,
+}
+
+/// What a sampling planner (the RRT-like baseline, or an external one through a waypoints
+/// file) did for one window: its complexity, made visible (the issue of Remark III.1).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct SamplingReport {
+    /// 𝔯, samples drawn from each node per step (0 for an external planner).
+    pub samples: usize,
+    /// Nodes kept per step (0 for an external planner).
+    pub tree_budget: usize,
+    /// Vehicle draws made (every USV and AUV draw, valid or not).
+    pub drawn: u64,
+    /// Valid team samples kept as tree nodes over the window (before pruning).
+    pub kept: u64,
+    /// Why draws were rejected: the constraint's name and how many draws it rejected.
+    pub rejected: Vec<(String, u64)>,
+    /// Per step k = 1..=K: draws, valid children, nodes kept after pruning and the wall time
+    /// (empty for an external planner).
+    pub steps: Vec<SamplingStep>,
+    /// An external planner's seed and settings, as its waypoints file gives them.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub notes: String,
+}
+
+/// One step of a sampling planner's tree.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct SamplingStep {
+    /// Vehicle draws at this step.
+    pub drawn: u64,
+    /// Valid team samples (children) found at this step.
+    pub valid: u64,
+    /// Nodes kept after pruning to `tree_budget`.
+    pub kept: u64,
+    /// Wall-clock time of the step, seconds.
+    pub time_s: f64,
 }
 
 impl Window {
@@ -272,7 +324,7 @@ impl Plan {
     /// optimum of their window.
     pub fn unconverged_stages(&self) -> usize {
         let stages = self.windows.iter().flat_map(|w| [&w.step1, &w.final_]);
-        stages.filter(|st| !st.converged()).count()
+        stages.filter(|st| !st.converged() && !st.sampled()).count()
     }
 }
 
@@ -303,10 +355,19 @@ pub struct Stage {
     pub scp: Vec<ScpIteration>,
 }
 
+/// `Stage::status` of a stage found by a sampling planner (no SCP).
+pub const SAMPLED: &str = "sampled";
+
 impl Stage {
     /// Whether the stage's SCP converged (status "converged").
     pub fn converged(&self) -> bool {
         self.status == "converged"
+    }
+
+    /// Whether a sampling planner found the stage (status [`SAMPLED`]): it has no SCP log and
+    /// no convergence to speak of.
+    pub fn sampled(&self) -> bool {
+        self.status == SAMPLED
     }
 }
 

@@ -16,7 +16,7 @@ use crate::metrics::{first_cut_off, mission_metrics, window_metrics, MetricParam
 use crate::mission::{check_start, initial_state, next_window, FloorSource};
 use crate::plan::{
     Course, Graph, LinkReport, Metrics, ModelRecord, ObjectiveTerms, Plan, ScpIteration, Stage,
-    Window, FORMAT,
+    Window, FORMAT, METHOD_MPC,
 };
 use crate::scenario::Scenario;
 use crate::scp::{Iteration, ScpOutcome};
@@ -143,7 +143,7 @@ impl<'a> Planner<'a> {
     }
 }
 
-fn metric_params(s: &Scenario) -> MetricParams {
+pub(crate) fn metric_params(s: &Scenario) -> MetricParams {
     MetricParams {
         dt: s.horizon.dt,
         sonar_range: s.acoustic.sonar_range,
@@ -154,7 +154,7 @@ fn metric_params(s: &Scenario) -> MetricParams {
 }
 
 /// Metrics over every window of the mission.
-fn mission(windows: &[Window], floor: &Seafloor, s: &Scenario) -> Metrics {
+pub(crate) fn mission(windows: &[Window], floor: &Seafloor, s: &Scenario) -> Metrics {
     let parts: Vec<(&Stage, &[Vec<crate::plan::Link>])> = windows
         .iter()
         .map(|w| (&w.final_, w.links.links.as_slice()))
@@ -338,12 +338,14 @@ fn run(
             final_,
             links: report,
             metrics,
+            sampling: None,
         });
     }
     let warnings = crate::advice::warnings(&windows, s, floor);
     Ok(Plan {
         warnings,
         format: FORMAT.into(),
+        method: METHOD_MPC.into(),
         shoal_version: env!("CARGO_PKG_VERSION").into(),
         scenario_source: provenance.scenario_source.clone(),
         overrides: provenance.overrides.clone(),

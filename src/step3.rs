@@ -162,7 +162,7 @@ fn blocked_links(
 }
 
 /// Every (step, link) of k = 1..=K whose length is outside its band by more than 1 mm.
-fn out_of_band(set: &LinkSet, t: &Trajectory) -> Vec<OutOfBand> {
+pub(crate) fn out_of_band(set: &LinkSet, t: &Trajectory) -> Vec<OutOfBand> {
     let mut out = Vec::new();
     for k in 1..set.links.len() {
         for (&link, &band) in set.links[k].iter().zip(&set.bands[k]) {

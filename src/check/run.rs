@@ -2,7 +2,7 @@
 //! make the checker panic; what is missing is reported by the "structure" family.
 
 use super::*;
-use crate::plan::{AuvPath, Stage, Window, FORMAT};
+use crate::plan::{AuvPath, Stage, Window, FORMAT, METHOD_MPC, SAMPLED};
 use crate::scenario::Scenario;
 use std::f64::consts::PI;
 
@@ -387,14 +387,28 @@ impl Checker<'_> {
     fn stage_structure(&mut self, w: usize, pre: &str, st: &Stage) {
         let (k, n) = (self.k, self.s.team.auvs);
         let stage = stage_name(pre);
-        self.require(
-            matches!(
-                st.status.as_str(),
-                "converged" | "max_iterations" | "stalled" | "solver_trouble"
-            ),
-            || format!("window {w}: {stage} status \"{}\"", st.status),
-        );
-        self.scp_log(w, stage, st);
+        // a sampling planner's stage (any method but the MPC's) has no SCP log
+        if self.plan.method == METHOD_MPC {
+            self.require(
+                matches!(
+                    st.status.as_str(),
+                    "converged" | "max_iterations" | "stalled" | "solver_trouble"
+                ),
+                || format!("window {w}: {stage} status \"{}\"", st.status),
+            );
+            self.scp_log(w, stage, st);
+        } else {
+            self.require(
+                st.sampled() && st.scp.is_empty() && st.iterations == 0,
+                || {
+                    format!(
+                        "window {w}: {stage} of a \"{}\" plan has status \"{}\" and {} SCP \
+                     iterations (a sampled stage has status \"{SAMPLED}\" and none)",
+                        self.plan.method, st.status, st.iterations
+                    )
+                },
+            );
+        }
         let o = st.objective;
         self.require(
             [o.energy, o.depth, o.usv, o.total]

@@ -12,6 +12,7 @@
 //! Files are written atomically ([`crate::output::write_atomic`]).
 
 mod canvas;
+mod compare;
 mod depth;
 mod map;
 mod overlay;
@@ -31,6 +32,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use thiserror::Error;
 
+pub use compare::{write_compare, COMPARE_FIGURE};
 pub use sim::{write_sim, write_sim_with, SIM_FIGURES};
 pub use style::{vehicle_colour, vehicle_name};
 
@@ -74,6 +76,10 @@ pub enum FigureError {
     /// per AUV and epoch; holds what is wrong.
     #[error("cannot plot the simulation: {0}")]
     Sim(String),
+    /// Comparison rows that cannot be plotted: none, or none of the runs made a plan; holds
+    /// what is wrong.
+    #[error("cannot plot the comparison: {0}")]
+    Compare(String),
 }
 
 /// One figure written, for progress reports.

@@ -10,6 +10,7 @@
 use serde::{Deserialize, Serialize};
 
 mod load;
+mod sampling;
 mod schema;
 mod sim;
 mod template;
@@ -19,6 +20,7 @@ mod validate;
 pub use load::{
     default_with, from_toml_str, load, with_overrides, ScenarioError, EMBEDDED_DEFAULT,
 };
+pub use sampling::Sampling;
 pub use sim::{profile_factor, Current, Navigation, Simulation};
 pub use template::default_toml;
 pub use validate::{
@@ -56,6 +58,8 @@ pub struct Scenario {
     pub navigation: Navigation,
     /// `[simulation]`: how `shoal simulate` integrates the vehicles.
     pub simulation: Simulation,
+    /// `[sampling]`: the RRT-like baseline planner (`shoal plan --method rrt-like`).
+    pub sampling: Sampling,
     /// Explicit initial state; when absent it is drawn from `seed` (Algorithm 1, line 5).
     pub initial: Option<Initial>,
 }
@@ -413,7 +417,9 @@ impl Scp {
 pub struct Initial {
     /// USV position [x, y], metres.
     pub usv: [f64; 2],
-    /// AUV positions [x, y, z], metres; AUVs start at rest.
+    /// AUV positions [x, y, z], metres; AUVs start at rest. Empty (or absent): drawn from the
+    /// seed within d_s of `usv` (Algorithm 1, line 5, about the USV's given start).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub auvs: Vec<[f64; 3]>,
 }
 
@@ -437,6 +443,7 @@ impl Default for Scenario {
             current: Current::default(),
             navigation: Navigation::default(),
             simulation: Simulation::default(),
+            sampling: Sampling::default(),
             initial: None,
         }
     }

@@ -381,6 +381,21 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Fixed step of the RK4 integrator of the 6-DoF vehicle model, seconds. 0 < step ≤ \
              0.2, and navigation.sample_period is a whole number of steps."
         }
+        "sampling" => {
+            "The RRT-like baseline of the paper's Section V, `shoal plan --method rrt-like` \
+             (docs/baseline.md); the MPC planner ignores it."
+        }
+        "sampling.samples" => {
+            "𝔯: valid random samples drawn from every node of the tree at each step, its \
+             children. 1 ≤ samples ≤ 1000."
+        }
+        "sampling.tree_budget" => {
+            "Nodes the tree keeps per step; a step with more children keeps the best by score \
+             so far (the paper's full tree has Σ_k 𝔯^k nodes). 1 ≤ tree_budget ≤ 100000."
+        }
+        "sampling.attempts" => {
+            "Draws per AUV before one sample is given up. 1 ≤ attempts ≤ 100000."
+        }
         "initial" => {
             "Explicit initial state (Algorithm 1, lines 4–5). When absent, the USV starts at \
              the origin and the AUVs are drawn from `seed` within d_s of it (C1_6 at k = 0). \
@@ -389,7 +404,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "initial.usv" => "P_USV[0] = [x, y], metres.",
         "initial.auvs" => {
             "P_n[0] = [x, y, z], metres, one per AUV (exactly team.auvs of them), z < 0; the \
-             AUVs start at rest."
+             AUVs start at rest. Leave it out (or empty) to draw them from `seed` within d_s of \
+             initial.usv, as without [initial] (a start on a real grid for any team size)."
         }
         _ => return None,
     })

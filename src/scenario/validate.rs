@@ -497,6 +497,27 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     // What `shoal simulate` reads ([current], [navigation], [simulation]).
     sim(&mut c, s);
 
+    // The RRT-like baseline ([sampling]).
+    let g = &s.sampling;
+    c.int(
+        "sampling.samples",
+        g.samples,
+        (1..=1000).contains(&g.samples),
+        "must be a whole number with 1 ≤ samples ≤ 1000",
+    );
+    c.int(
+        "sampling.tree_budget",
+        g.tree_budget,
+        (1..=100_000).contains(&g.tree_budget),
+        "must be a whole number with 1 ≤ tree_budget ≤ 100000",
+    );
+    c.int(
+        "sampling.attempts",
+        g.attempts,
+        (1..=100_000).contains(&g.attempts),
+        "must be a whole number with 1 ≤ attempts ≤ 100000",
+    );
+
     // Initial state.
     if let Some(init) = &s.initial {
         c.finite_arr(
@@ -504,7 +525,7 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
             &init.usv,
             "must be two finite numbers [x, y] in metres (P_USV[0])",
         );
-        if init.auvs.len() != s.team.auvs {
+        if !init.auvs.is_empty() && init.auvs.len() != s.team.auvs {
             c.push(
                 "initial.auvs",
                 match init.auvs.len() {
@@ -512,7 +533,8 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
                     n => format!("[{n} positions]"),
                 },
                 format!(
-                    "must list exactly team.auvs = {} AUV positions, but lists {}",
+                    "must list exactly team.auvs = {} AUV positions (or none: drawn from seed \
+                     about initial.usv), but lists {}",
                     s.team.auvs,
                     init.auvs.len()
                 ),

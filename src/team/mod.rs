@@ -304,6 +304,11 @@ impl<'a> TeamProblem<'a> {
         objective::terms(self, t)
     }
 
+    /// The weighted OF1_8 (or OF1_8_2) term were the window to end with the USV at `p`.
+    pub fn usv_term(&self, p: [f64; 2]) -> f64 {
+        objective::usv_weighted(self, p)
+    }
+
     /// Weighted objective J.
     pub fn objective(&self, t: &Terms) -> f64 {
         objective::weighted(self, t).iter().sum()

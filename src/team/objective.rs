@@ -75,15 +75,7 @@ pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
         None => (0.0, 0.0, 0.0),
     };
     let lanes = super::lanes::value(p, t);
-    let pk = t.usv_p[p.layout.k];
-    let s = p.scenario;
-    let usv = match s.usv.objective {
-        UsvObjective::Away => -usv_away_track(pk, &p.track).0,
-        UsvObjective::Destination => {
-            let d = s.usv.destination;
-            (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
-        }
-    };
+    let usv = usv_unweighted(p, t.usv_p[p.layout.k]);
     Terms {
         energy,
         depth,
@@ -98,12 +90,35 @@ pub(super) fn terms(p: &TeamProblem, t: &Trajectory) -> Terms {
 
 /// The weighted terms of J: w1·OF1_1, w2·OF1_2, the USV term, −w5·OF1_5, w3·OF1_3, w4·OF1_4,
 /// w_lanes·lanes (the last four zero without links).
+/// The unweighted OF1_8 (−‖P_USV − c‖², c the track's nearest point) or OF1_8_2
+/// (‖P_USV − dest‖²) with the USV at `pk`.
+fn usv_unweighted(p: &TeamProblem, pk: [f64; 2]) -> f64 {
+    let s = p.scenario;
+    match s.usv.objective {
+        UsvObjective::Away => -usv_away_track(pk, &p.track).0,
+        UsvObjective::Destination => {
+            let d = s.usv.destination;
+            (pk[0] - d[0]).powi(2) + (pk[1] - d[1]).powi(2)
+        }
+    }
+}
+
+/// The USV's unweighted term `usv` weighted as the objective weighs it.
+fn usv_weight(p: &TeamProblem, usv: f64) -> f64 {
+    match p.scenario.usv.objective {
+        UsvObjective::Away => -p.scenario.w8() * usv, // weights.w8_scaling
+        UsvObjective::Destination => p.scenario.weights.w8_2 * usv,
+    }
+}
+
+/// The weighted USV term with the USV at `pk` (`TeamProblem::usv_term`).
+pub(super) fn usv_weighted(p: &TeamProblem, pk: [f64; 2]) -> f64 {
+    usv_weight(p, usv_unweighted(p, pk))
+}
+
 pub(super) fn weighted(p: &TeamProblem, t: &Terms) -> [f64; 7] {
     let w = &p.scenario.weights;
-    let usv = match p.scenario.usv.objective {
-        UsvObjective::Away => -p.scenario.w8() * t.usv, // weights.w8_scaling
-        UsvObjective::Destination => w.w8_2 * t.usv,
-    };
+    let usv = usv_weight(p, t.usv);
     let of1_2 = match w.of1_2 {
         DepthObjective::Height => t.height,
         DepthObjective::Depth => t.depth,

@@ -244,6 +244,7 @@ fn build_with(
             graph: Default::default(),
             links: Default::default(),
             metrics: Default::default(),
+            sampling: None,
             final_: Stage {
                 status: "converged".into(),
                 iterations: 1,
@@ -289,6 +290,7 @@ fn build_with(
     let mut plan = Plan {
         warnings: vec![],
         format: FORMAT.into(),
+        method: shoal::plan::METHOD_MPC.into(),
         shoal_version: "test".into(),
         scenario_source: "test".into(),
         overrides: vec![],

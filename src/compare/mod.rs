@@ -1,0 +1,191 @@
+//! `shoal compare`: the paper's comparison (Section V, Fig. 6) measured. The MPC (Algorithm 1)
+//! and the RRT-like baseline plan the same scenarios (team sizes × seeds × floors); every plan
+//! is checked by `shoal check`; one row per run records wall time, the objective's terms, the
+//! check's margins, the explored area and the chain ([`Row`]); [`summary`] groups them.
+
+mod row;
+mod summary;
+
+pub use row::Row;
+pub use summary::{markdown, summary, Group};
+
+use crate::check::check_plan;
+use crate::error::PlanError;
+use crate::mission::scenario_floor;
+use crate::plan::Plan;
+use crate::planner::{Planner, Provenance};
+use crate::scenario::{with_overrides, Scenario, ScenarioError};
+use std::path::PathBuf;
+use std::time::Instant;
+use thiserror::Error;
+
+/// The planners a study compares.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Method {
+    /// Algorithm 1 (Steps 1–3 by sequential convex programming).
+    Mpc,
+    /// The paper's RRT-like baseline (`crate::sampling`).
+    RrtLike,
+}
+
+impl Method {
+    /// "mpc" or "rrt-like", as plans record it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Mpc => crate::plan::METHOD_MPC,
+            Method::RrtLike => crate::plan::METHOD_RRT_LIKE,
+        }
+    }
+}
+
+/// One floor of a study: a base scenario (its floor, start and every other key) and a name.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Base {
+    /// The name rows carry: "default" or the scenario file's stem.
+    pub name: String,
+    /// The scenario, before each run's team size and seed.
+    pub scenario: Scenario,
+    /// Where a scenario's relative `seafloor.file` is found.
+    pub dir: PathBuf,
+}
+
+/// A comparison: every method on every base × team size × seed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Study {
+    /// The scenarios (floors) compared on.
+    pub bases: Vec<Base>,
+    /// The planners.
+    pub methods: Vec<Method>,
+    /// Team sizes N.
+    pub auvs: Vec<usize>,
+    /// Seeds (the start and, on the synthetic floor, the floor).
+    pub seeds: Vec<u64>,
+}
+
+impl Default for Study {
+    /// The study on the embedded default: MPC and RRT-like, N = 1, 3, 5, seeds 1–10.
+    fn default() -> Self {
+        Study {
+            bases: vec![Base {
+                name: "default".into(),
+                scenario: Scenario::default(),
+                dir: PathBuf::from("."),
+            }],
+            methods: vec![Method::Mpc, Method::RrtLike],
+            auvs: vec![1, 3, 5],
+            seeds: (1..=10).collect(),
+        }
+    }
+}
+
+/// Errors of a study as a whole (a run's own failure is recorded in its row).
+#[derive(Debug, Error)]
+pub enum CompareError {
+    /// The study has nothing to run.
+    #[error("the study is empty: {0}")]
+    Empty(&'static str),
+    /// A run's scenario (base, team size, seed) is invalid.
+    #[error("{base}: {source}")]
+    Scenario {
+        /// The base's name.
+        base: String,
+        /// Why.
+        #[source]
+        source: Box<ScenarioError>,
+    },
+}
+
+impl Study {
+    /// Refuse an empty study.
+    pub fn validate(&self) -> Result<(), CompareError> {
+        for (empty, what) in [
+            (self.bases.is_empty(), "no scenario"),
+            (self.methods.is_empty(), "no method"),
+            (self.auvs.is_empty(), "no team size"),
+            (self.seeds.is_empty(), "no seed"),
+        ] {
+            if empty {
+                return Err(CompareError::Empty(what));
+            }
+        }
+        Ok(())
+    }
+
+    /// How many runs the study makes.
+    pub fn runs(&self) -> usize {
+        self.bases.len() * self.methods.len() * self.auvs.len() * self.seeds.len()
+    }
+}
+
+/// One run as planned: its key, its plan (or why there is none) and its wall time.
+pub struct Planned {
+    /// The row's key and measures.
+    pub row: Row,
+    /// The plan, when one was made.
+    pub plan: Option<Plan>,
+}
+
+/// Run every (base, N, seed, method) of `study`, in that order; `progress` hears of each run as
+/// it ends (with the run's index from 0), and may keep its plan.
+pub fn run(
+    study: &Study,
+    progress: &mut dyn FnMut(usize, &Planned),
+) -> Result<Vec<Row>, CompareError> {
+    study.validate()?;
+    let mut rows = Vec::with_capacity(study.runs());
+    for base in &study.bases {
+        for &n in &study.auvs {
+            for &seed in &study.seeds {
+                let sets = [format!("team.auvs={n}"), format!("seed={seed}")];
+                let s = with_overrides(&base.scenario, &base.name, &sets).map_err(|source| {
+                    CompareError::Scenario {
+                        base: base.name.clone(),
+                        source: Box::new(source),
+                    }
+                })?;
+                for &method in &study.methods {
+                    let planned = plan_one(base, &s, method);
+                    progress(rows.len(), &planned);
+                    rows.push(planned.row);
+                }
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// Plan one run and measure it.
+fn plan_one(base: &Base, s: &Scenario, method: Method) -> Planned {
+    let mut row = Row::key(&base.name, method.name(), s.team.auvs, s.seed);
+    let clock = Instant::now();
+    let made = scenario_floor(s, &base.dir).and_then(|(floor, source)| {
+        let provenance = Provenance {
+            scenario_source: base.name.clone(),
+            overrides: vec![
+                format!("team.auvs={}", s.team.auvs),
+                format!("seed={}", s.seed),
+            ],
+            seafloor: source,
+        };
+        let plan = match method {
+            Method::Mpc => Planner::new(s, &floor).provenance(provenance).run(),
+            Method::RrtLike => crate::sampling::plan(s, &floor, &provenance, &mut |_| {}),
+        }?;
+        Ok::<_, PlanError>((plan, floor))
+    });
+    let wall_s = clock.elapsed().as_secs_f64();
+    match made {
+        Ok((plan, floor)) => {
+            let report = check_plan(&plan, &floor);
+            row.measure(&plan, &report, wall_s);
+            Planned {
+                row,
+                plan: Some(plan),
+            }
+        }
+        Err(e) => {
+            row.fail(&e, wall_s);
+            Planned { row, plan: None }
+        }
+    }
+}

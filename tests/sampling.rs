@@ -1,0 +1,291 @@
+//! The sampling baselines: the RRT-like planner of the paper's Section V (`shoal plan --method
+//! rrt-like`) and another planner's waypoints (`shoal plan --waypoints`), checked by the same
+//! checker as the MPC's plans.
+
+mod common;
+use common::shoal;
+
+use shoal::mission::FloorSource;
+use shoal::sampling::waypoints::{self, WaypointsFile, WaypointsWindow, WAYPOINTS_FORMAT};
+use shoal::scenario::{self, Scenario};
+use shoal::{check, PlanError, Planner, Provenance, Seafloor};
+
+fn scenario_with(sets: &[&str]) -> Scenario {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    scenario::default_with(&sets).expect("valid overrides")
+}
+
+fn floor_of(s: &Scenario) -> Seafloor {
+    Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap()
+}
+
+fn rrt_like(s: &Scenario, floor: &Seafloor) -> Result<shoal::Plan, PlanError> {
+    shoal::sampling::plan(s, floor, &Provenance::in_memory(s), &mut |_| {})
+}
+
+#[test]
+fn rrt_like_plans_pass_the_checker_for_one_three_and_five_auvs() {
+    for n in [1, 3, 5] {
+        let s = scenario_with(&[&format!("team.auvs={n}")]);
+        let floor = floor_of(&s);
+        let plan = rrt_like(&s, &floor).unwrap();
+        let report = check(&plan, &floor);
+        assert!(report.passed(), "N = {n}:\n{}", report.table());
+        assert_eq!(plan.method, "rrt-like");
+        let w = &plan.windows[0];
+        assert!(w.step1.sampled() && w.final_.sampled());
+        let sampling = w.sampling.as_ref().unwrap();
+        assert_eq!(sampling.steps.len(), s.horizon.steps);
+        assert!(sampling.drawn >= sampling.kept && sampling.kept >= s.horizon.steps as u64);
+        assert!(sampling
+            .steps
+            .iter()
+            .all(|st| st.kept >= 1 && st.kept <= s.sampling.tree_budget as u64));
+        // the chain held at every step, by construction
+        assert_eq!(plan.metrics.connected_fraction, 1.0);
+        assert_eq!(plan.metrics.chain_fraction, 1.0);
+        assert_eq!(plan.unconverged_stages(), 0);
+    }
+}
+
+#[test]
+fn the_same_seed_gives_the_same_rrt_like_plan() {
+    let s = scenario_with(&["team.auvs=3"]);
+    let floor = floor_of(&s);
+    let (a, b) = (rrt_like(&s, &floor).unwrap(), rrt_like(&s, &floor).unwrap());
+    assert_eq!(a.windows[0].final_.auvs, b.windows[0].final_.auvs);
+    assert_eq!(a.windows[0].final_.usv, b.windows[0].final_.usv);
+    assert_eq!(a.windows[0].graph.a2a, b.windows[0].graph.a2a);
+    // and another seed another plan
+    let s2 = scenario_with(&["team.auvs=3", "seed=2"]);
+    let c = rrt_like(&s2, &floor_of(&s2)).unwrap();
+    assert_ne!(a.windows[0].final_.usv, c.windows[0].final_.usv);
+}
+
+#[test]
+fn rrt_like_windows_follow_one_another() {
+    let s = scenario_with(&["team.auvs=2", "windows=2", "horizon.steps=10"]);
+    let floor = floor_of(&s);
+    let plan = rrt_like(&s, &floor).unwrap();
+    let report = check(&plan, &floor);
+    assert!(report.passed(), "{}", report.table());
+    assert_eq!(plan.windows.len(), 2);
+}
+
+#[test]
+fn a_tree_that_finds_nothing_names_the_step_and_the_constraint() {
+    // one draw per vehicle: five AUVs cannot keep a chain of links in range
+    let s = scenario_with(&["sampling.attempts=1", "sampling.samples=1"]);
+    let err = rrt_like(&s, &floor_of(&s)).unwrap_err();
+    let PlanError::NoValidTree { k, drawn, .. } = &err else {
+        panic!("{err}");
+    };
+    assert!(*k >= 1 && *k <= s.horizon.steps && *drawn >= 1);
+    let text = err.to_string();
+    assert!(text.contains(&format!("step {k}")), "{text}");
+    assert!(
+        text.contains("chain link within d_s") || text.contains("C1_13") || text.contains("C2_2"),
+        "{text}"
+    );
+    assert!(text.contains("sampling.attempts"), "{text}");
+}
+
+/// The final paths of an MPC plan as a waypoints file.
+fn waypoints_of(plan: &shoal::Plan) -> WaypointsFile {
+    WaypointsFile {
+        format: WAYPOINTS_FORMAT.into(),
+        method: "mpc-replayed".into(),
+        seed: Some(plan.scenario.seed),
+        solve_time_s: 1.0,
+        notes: "the MPC's own paths".into(),
+        windows: plan
+            .windows
+            .iter()
+            .map(|w| WaypointsWindow {
+                usv: w.final_.usv.position.clone(),
+                auvs: w.final_.auvs.iter().map(|a| a.position.clone()).collect(),
+                samples_drawn: 0,
+                samples_kept: 0,
+                solve_time_s: 1.0,
+            })
+            .collect(),
+    }
+}
+
+#[test]
+fn the_mpc_plan_as_waypoints_checks_and_keeps_its_paths() {
+    let s = scenario_with(&["team.auvs=3"]);
+    let floor = floor_of(&s);
+    let mpc = Planner::new(&s, &floor).run().unwrap();
+    let file = waypoints_of(&mpc);
+    let plan = waypoints::plan(&s, &floor, &Provenance::in_memory(&s), &file, "mpc.json").unwrap();
+    let report = check(&plan, &floor);
+    assert!(report.passed(), "{}", report.table());
+    assert_eq!(plan.method, "mpc-replayed");
+    let (a, b) = (&mpc.windows[0].final_, &plan.windows[0].final_);
+    for (pa, pb) in a.auvs.iter().zip(&b.auvs) {
+        for (x, y) in pa.position.iter().zip(&pb.position) {
+            for i in 0..3 {
+                assert!((x[i] - y[i]).abs() < 1e-6, "{x:?} vs {y:?}");
+            }
+        }
+        for (x, y) in pa.input.iter().zip(&pb.input) {
+            for i in 0..3 {
+                assert!((x[i] - y[i]).abs() < 1e-8, "{x:?} vs {y:?}");
+            }
+        }
+    }
+    let (ea, eb) = (a.objective.energy, b.objective.energy);
+    assert!((ea - eb).abs() <= 1e-6 * ea, "{ea} vs {eb}");
+}
+
+#[test]
+fn waypoints_that_do_not_fit_are_refused_naming_the_field() {
+    let s = scenario_with(&["team.auvs=2", "horizon.steps=4"]);
+    let floor = floor_of(&s);
+    let prov = Provenance {
+        seafloor: FloorSource::synthetic(),
+        ..Provenance::in_memory(&s)
+    };
+    let mpc = Planner::new(&s, &floor).run().unwrap();
+    let mut file = waypoints_of(&mpc);
+    file.windows[0].auvs[1].pop();
+    let err = waypoints::plan(&s, &floor, &prov, &file, "w.json").unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("w.json: windows[0].auvs[1]: 4 waypoints for K + 1 = 5"),
+        "{err}"
+    );
+    let mut file = waypoints_of(&mpc);
+    file.windows[0].usv[0][0] += 1.0;
+    let err = waypoints::plan(&s, &floor, &prov, &file, "w.json").unwrap_err();
+    assert!(err.to_string().contains("windows[0].usv[0]"), "{err}");
+    // a file that is not one
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("w.json");
+    let mut bad = waypoints_of(&mpc);
+    bad.method = "mpc".into();
+    std::fs::write(&path, serde_json::to_string(&bad).unwrap()).unwrap();
+    let err = waypoints::read(&path).unwrap_err().to_string();
+    assert!(err.contains("w.json") && err.contains("method"), "{err}");
+    bad.format = "shoal-waypoints/0".into();
+    std::fs::write(&path, serde_json::to_string(&bad).unwrap()).unwrap();
+    let err = waypoints::read(&path).unwrap_err().to_string();
+    assert!(err.contains("shoal-waypoints/1"), "{err}");
+}
+
+#[test]
+fn cli_rrt_like_writes_a_plan_that_checks() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let (code, stdout, stderr) = common::run(shoal().args([
+        "plan",
+        "--method",
+        "rrt-like",
+        "--set",
+        "team.auvs=2",
+        "--no-plot",
+        "-o",
+        out.to_str().unwrap(),
+    ]));
+    assert_eq!(code, 0, "{stdout}\n{stderr}");
+    assert!(stderr.contains("valid team samples"), "{stderr}");
+    let plan = shoal::output::read_plan(&out.join("plan.json")).unwrap();
+    assert_eq!(plan.method, "rrt-like");
+    let (code, stdout, _) =
+        common::run(shoal().args(["check", out.join("plan.json").to_str().unwrap()]));
+    assert_eq!(code, 0, "{stdout}");
+    // a waypoints file that is not there: the file named, nothing written
+    let (code, _, stderr) = common::run(shoal().args([
+        "plan",
+        "--waypoints",
+        dir.path().join("none.json").to_str().unwrap(),
+        "-o",
+        dir.path().join("w").to_str().unwrap(),
+    ]));
+    assert_ne!(code, 0);
+    assert!(stderr.contains("none.json"), "{stderr}");
+    assert!(!dir.path().join("w").join("plan.json").exists());
+}
+
+#[test]
+fn compare_runs_both_planners_on_the_same_scenarios_and_the_mpc_wins_p2() {
+    let study = shoal::compare::Study {
+        bases: vec![shoal::compare::Base {
+            name: "default".into(),
+            scenario: scenario_with(&["horizon.steps=8"]),
+            dir: ".".into(),
+        }],
+        auvs: vec![1, 2],
+        seeds: vec![1],
+        ..shoal::compare::Study::default()
+    };
+    let mut seen = 0;
+    let rows = shoal::compare::run(&study, &mut |i, planned| {
+        assert_eq!(i, seen);
+        seen += 1;
+        assert!(planned.plan.is_some(), "{:?}", planned.row);
+    })
+    .unwrap();
+    assert_eq!(rows.len(), 4);
+    for pair in rows.chunks(2) {
+        let (mpc, rrt) = (&pair[0], &pair[1]);
+        assert_eq!(
+            (mpc.method.as_str(), rrt.method.as_str()),
+            ("mpc", "rrt-like")
+        );
+        assert_eq!((mpc.auvs, mpc.seed), (rrt.auvs, rrt.seed));
+        for r in pair {
+            assert_eq!(r.status, "passed", "{r:?}");
+            assert!(r.wall_s > 0.0 && r.p2_objective.is_finite() && r.energy > 0.0);
+            assert!(r.margin_floor_m >= 0.0 && r.margin_c1_6_m >= 0.0, "{r:?}");
+        }
+        assert_eq!(mpc.samples_drawn, 0);
+        assert!(rrt.samples_drawn > rrt.samples_kept && rrt.samples_kept > 0);
+        // both minimise P2's objective; the MPC's optimum is lower than the tree's best leaf
+        assert!(mpc.p2_objective < rrt.p2_objective, "{mpc:?}\n{rrt:?}");
+    }
+    let groups = shoal::compare::summary(&rows);
+    assert_eq!(groups.len(), 4);
+    assert!(groups.iter().all(|g| g.runs == 1 && g.passed == 1));
+}
+
+#[test]
+fn cli_compare_writes_the_table_and_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cmp");
+    let (code, stdout, stderr) = common::run(shoal().args([
+        "compare",
+        "--auvs",
+        "1",
+        "--seeds",
+        "1-2",
+        "--set",
+        "horizon.steps=6",
+        "--keep-plans",
+        "-o",
+        out.to_str().unwrap(),
+    ]));
+    assert_eq!(code, 0, "{stdout}\n{stderr}");
+    assert!(
+        stderr.contains("[4/4] default rrt-like N = 1 seed 2: passed"),
+        "{stderr}"
+    );
+    let csv = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 5, "{csv}");
+    assert!(lines[0].starts_with("scenario,method,auvs,seed,status,error,wall_s,p2_objective"));
+    assert!(std::fs::read_to_string(out.join("summary.md"))
+        .unwrap()
+        .contains("| default | rrt-like | 1 | 2 / 2 / 2 |"));
+    let kept = shoal::output::read_plan(&out.join("plans/default-rrt-like-n1-s2.json")).unwrap();
+    assert_eq!((kept.method.as_str(), kept.scenario.seed), ("rrt-like", 2));
+    // a bad seed list is an error naming the flag
+    let (code, _, stderr) =
+        common::run(shoal().args(["compare", "--seeds", "5-1", "-o", out.to_str().unwrap()]));
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--seeds 5-1: the range runs backwards"),
+        "{stderr}"
+    );
+}
