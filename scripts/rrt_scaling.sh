@@ -16,14 +16,14 @@ row() { # the summary.md rows of a compare run, prefixed with its settings
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for n in 1 3 5; do
     "$shoal" compare --methods mpc --auvs "$n" --seeds "$seeds" --no-plot -o "$out/mpc-n$n" >/dev/null 2>&1
-    row "$out/mpc-n$n" "| - | - "
+    row "$out/mpc-n$n" "- | -"
     for r in 4 16 64; do
       for b in 50 200 1000 5000; do
         [ "$n" -gt 1 ] && [ "$b" -gt 1000 ] && continue # minutes per plan; the trend is clear
         d="$out/rrt-n$n-r$r-b$b"
         "$shoal" compare --methods rrt-like --auvs "$n" --seeds "$seeds" --no-plot -o "$d" \
           --set "sampling.samples=$r" --set "sampling.tree_budget=$b" >/dev/null 2>&1
-        row "$d" "| $r | $b "
+        row "$d" "$r | $b"
       done
     done
   done

@@ -189,6 +189,10 @@ enum Command {
         /// Also write every run's plan.json into OUT/plans.
         #[arg(long)]
         keep_plans: bool,
+        /// Also compare other planners' paths: waypoints files SCENARIO-nN-sSEED.json in this
+        /// directory (e.g. from scripts/ompl_compare.sh), one more row for each that exists.
+        #[arg(long, value_name = "DIR")]
+        waypoints: Option<PathBuf>,
         /// Do not draw the figure.
         #[arg(long)]
         no_plot: bool,
@@ -403,6 +407,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             methods,
             out,
             keep_plans,
+            waypoints,
             no_plot,
         } => {
             let seeds = seed_list(&seeds).map_err(|e| anyhow::anyhow!("--seeds {seeds}: {e}"))?;
@@ -411,6 +416,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 methods: methods.iter().map(|m| m.study()).collect(),
                 auvs,
                 seeds,
+                waypoints,
             };
             compare(&study, &out, keep_plans, !no_plot)
         }
@@ -1004,16 +1010,13 @@ fn compare(
     shoal::output::write_atomic(&out.join("summary.md"), table.as_bytes())?;
     println!("{table}");
     if figure {
-        let title = format!(
-            "{}, {} runs",
-            study
-                .methods
-                .iter()
-                .map(|m| m.name())
-                .collect::<Vec<_>>()
-                .join(" vs "),
-            rows.len()
-        );
+        let mut methods: Vec<&str> = Vec::new();
+        for r in &rows {
+            if !methods.contains(&r.method.as_str()) {
+                methods.push(&r.method);
+            }
+        }
+        let title = format!("{}, {} runs", methods.join(" vs "), rows.len());
         shoal::figures::write_compare(&rows, &title, out)?;
     }
     println!(

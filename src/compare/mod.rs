@@ -14,8 +14,9 @@ use crate::error::PlanError;
 use crate::mission::scenario_floor;
 use crate::plan::Plan;
 use crate::planner::{Planner, Provenance};
+use crate::sampling::waypoints::{self, WaypointsFile};
 use crate::scenario::{with_overrides, Scenario, ScenarioError};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 use thiserror::Error;
 
@@ -60,6 +61,9 @@ pub struct Study {
     pub auvs: Vec<usize>,
     /// Seeds (the start and, on the synthetic floor, the floor).
     pub seeds: Vec<u64>,
+    /// A directory of other planners' waypoints files, `BASE-nN-sSEED.json` (e.g. made by
+    /// scripts/ompl_compare.sh): each run that has one gets a row of the file's method too.
+    pub waypoints: Option<PathBuf>,
 }
 
 impl Default for Study {
@@ -74,6 +78,7 @@ impl Default for Study {
             methods: vec![Method::Mpc, Method::RrtLike],
             auvs: vec![1, 3, 5],
             seeds: (1..=10).collect(),
+            waypoints: None,
         }
     }
 }
@@ -144,9 +149,17 @@ pub fn run(
                     }
                 })?;
                 for &method in &study.methods {
-                    let planned = plan_one(base, &s, method);
+                    let planned = plan_one(base, &s, Made::By(method));
                     progress(rows.len(), &planned);
                     rows.push(planned.row);
+                }
+                if let Some(dir) = &study.waypoints {
+                    let file = dir.join(format!("{}-n{n}-s{seed}.json", base.name));
+                    if file.exists() {
+                        let planned = plan_one(base, &s, Made::From(&file));
+                        progress(rows.len(), &planned);
+                        rows.push(planned.row);
+                    }
                 }
             }
         }
@@ -154,26 +167,63 @@ pub fn run(
     Ok(rows)
 }
 
-/// Plan one run and measure it.
-fn plan_one(base: &Base, s: &Scenario, method: Method) -> Planned {
-    let mut row = Row::key(&base.name, method.name(), s.team.auvs, s.seed);
+/// How a run's plan is made: by one of shoal's planners, or from a waypoints file.
+enum Made<'a> {
+    By(Method),
+    From(&'a Path),
+}
+
+/// A run's planner, its waypoints read.
+enum Source<'a> {
+    By(Method),
+    From(&'a Path, WaypointsFile),
+}
+
+/// Plan one run and measure it. A waypoints file's run is timed by the file's own
+/// `solve_time_s` (the other planner's time), not by its import.
+fn plan_one(base: &Base, s: &Scenario, made: Made) -> Planned {
+    let source = match made {
+        Made::By(m) => Source::By(m),
+        Made::From(path) => match waypoints::read(path) {
+            Ok(f) => Source::From(path, f),
+            Err(e) => {
+                let mut row = Row::key(&base.name, "waypoints", s.team.auvs, s.seed);
+                row.fail(&e, 0.0);
+                return Planned { row, plan: None };
+            }
+        },
+    };
+    let name = match &source {
+        Source::By(m) => m.name().to_string(),
+        Source::From(_, f) => f.method.clone(),
+    };
+    let mut row = Row::key(&base.name, &name, s.team.auvs, s.seed);
     let clock = Instant::now();
-    let made = scenario_floor(s, &base.dir).and_then(|(floor, source)| {
+    let made = scenario_floor(s, &base.dir).and_then(|(floor, source_of_floor)| {
         let provenance = Provenance {
             scenario_source: base.name.clone(),
             overrides: vec![
                 format!("team.auvs={}", s.team.auvs),
                 format!("seed={}", s.seed),
             ],
-            seafloor: source,
+            seafloor: source_of_floor,
         };
-        let plan = match method {
-            Method::Mpc => Planner::new(s, &floor).provenance(provenance).run(),
-            Method::RrtLike => crate::sampling::plan(s, &floor, &provenance, &mut |_| {}),
+        let plan = match &source {
+            Source::By(Method::Mpc) => Planner::new(s, &floor).provenance(provenance).run(),
+            Source::By(Method::RrtLike) => {
+                crate::sampling::plan(s, &floor, &provenance, &mut |_| {})
+            }
+            Source::From(path, f) => {
+                let name = path.display().to_string();
+                waypoints::plan(s, &floor, &provenance, f, &name)
+            }
         }?;
         Ok::<_, PlanError>((plan, floor))
     });
-    let wall_s = clock.elapsed().as_secs_f64();
+    let wall_s = match &source {
+        Source::From(_, f) => f.solve_time_s,
+        Source::By(_) => clock.elapsed().as_secs_f64(),
+    };
     match made {
         Ok((plan, floor)) => {
             let report = check_plan(&plan, &floor);
