@@ -220,6 +220,73 @@ fn stage_record(
     }
 }
 
+/// What every planner of a scenario starts from: the discrete models, the keep-out field
+/// (every obstacle cell above the surface, built once per plan) and the initial state
+/// (Algorithm 1, line 5).
+pub(crate) struct Setup {
+    /// The models, as the plan records them.
+    pub model: ModelRecord,
+    /// `Seafloor::keep_out` of the floor.
+    pub keep_out: Seafloor,
+    /// The state window 0 starts from.
+    pub initial: crate::plan::InitialState,
+}
+
+impl Setup {
+    /// The set-up of `s` over `floor`.
+    pub fn of(s: &Scenario, floor: &Seafloor) -> Result<Setup, PlanError> {
+        let model = ModelRecord {
+            damping: Damping::from_params(&s.auv)?,
+            auv: AuvModel::new(&s.auv, s.horizon.dt)?,
+            usv: UsvModel {
+                dt: s.horizon.dt,
+                max_speed: s.usv.max_speed,
+            },
+        };
+        let keep_out = floor.keep_out();
+        let initial = initial_state(s, floor, &keep_out)?;
+        Ok(Setup {
+            model,
+            keep_out,
+            initial,
+        })
+    }
+
+    /// The state window 0 starts from, as a [`Start`].
+    pub fn start(&self) -> Start {
+        Start {
+            usv: self.initial.usv,
+            auvs: self.initial.auvs.clone(),
+        }
+    }
+
+    /// The plan of `windows` made by `method`: the record of the scenario, the floor, the
+    /// models and the initial state, the mission's metrics and the advice.
+    pub fn plan(
+        self,
+        s: &Scenario,
+        floor: &Seafloor,
+        provenance: &Provenance,
+        method: &str,
+        windows: Vec<Window>,
+    ) -> Plan {
+        Plan {
+            warnings: crate::advice::warnings(&windows, s, floor),
+            format: FORMAT.into(),
+            method: method.into(),
+            shoal_version: env!("CARGO_PKG_VERSION").into(),
+            scenario_source: provenance.scenario_source.clone(),
+            overrides: provenance.overrides.clone(),
+            scenario: s.clone(),
+            seafloor: provenance.seafloor.record(floor),
+            model: self.model,
+            metrics: mission(&windows, floor, s),
+            initial: self.initial,
+            windows,
+        }
+    }
+}
+
 /// Algorithm 1: Step 1, Step 2, Step 3 with its line-of-sight loop, then the next window from
 /// the last state. `progress` hears of each iteration and step as it ends.
 fn run(
@@ -228,28 +295,18 @@ fn run(
     provenance: &Provenance,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Plan, PlanError> {
-    let damping = Damping::from_params(&s.auv)?;
-    let auv = AuvModel::new(&s.auv, s.horizon.dt)?;
-    let usv = UsvModel {
-        dt: s.horizon.dt,
-        max_speed: s.usv.max_speed,
-    };
-    // what the constraints see: every obstacle cell above the surface (built once per plan)
-    let keep_out = floor.keep_out();
-    let initial = initial_state(s, floor, &keep_out)?; // line 5
-    let mut start = Start {
-        usv: initial.usv,
-        auvs: initial.auvs.clone(),
-    };
+    let setup = Setup::of(s, floor)?; // line 5
+    let (auv, usv, keep_out) = (setup.model.auv, setup.model.usv, &setup.keep_out);
+    let mut start = setup.start();
     let mut windows = Vec::with_capacity(s.windows);
     let mut heading = None;
     // the USV's path so far, which OF1_8 measures from with usv.away_from = "track"
     let mut track: Vec<[f64; 2]> = Vec::new();
     for w in 0..s.windows {
-        check_start(s, floor, &keep_out, &start, w)?;
+        check_start(s, floor, keep_out, &start, w)?;
         // Step 1 (P2), line 9
         let clock = Instant::now();
-        let p2 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone());
+        let p2 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone());
         // another window follows: the terminal margin, if the scenario asks for it
         let more = s.horizon.terminal_margin && w + 1 < s.windows;
         let mut p2 = p2.with_track(&track).with_terminal(more);
@@ -283,7 +340,7 @@ fn run(
         // Step 3 (P5) and line of sight, lines 17–22
         let clock = Instant::now();
         let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
-        let p5 = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone())
+        let p5 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone())
             .with_links(links)
             .with_lanes(&out1.iterate);
         let mut p5 = p5.with_track(&track).with_terminal(more);
@@ -341,19 +398,5 @@ fn run(
             sampling: None,
         });
     }
-    let warnings = crate::advice::warnings(&windows, s, floor);
-    Ok(Plan {
-        warnings,
-        format: FORMAT.into(),
-        method: METHOD_MPC.into(),
-        shoal_version: env!("CARGO_PKG_VERSION").into(),
-        scenario_source: provenance.scenario_source.clone(),
-        overrides: provenance.overrides.clone(),
-        scenario: s.clone(),
-        seafloor: provenance.seafloor.record(floor),
-        model: ModelRecord { damping, auv, usv },
-        metrics: mission(&windows, floor, s),
-        initial,
-        windows,
-    })
+    Ok(setup.plan(s, floor, provenance, METHOD_MPC, windows))
 }

@@ -27,14 +27,12 @@ pub use assemble::{window, Sampled};
 pub use tree::Grown;
 
 use crate::error::PlanError;
-use crate::mission::{check_start, initial_state, next_window};
-use crate::plan::{ModelRecord, Plan, SamplingStep, FORMAT, METHOD_RRT_LIKE};
-use crate::planner::{mission, Provenance};
+use crate::mission::{check_start, next_window};
+use crate::plan::{Plan, SamplingStep, METHOD_RRT_LIKE};
+use crate::planner::{Provenance, Setup};
 use crate::scenario::Scenario;
 use crate::seafloor::Seafloor;
 use crate::team::TeamProblem;
-use crate::trajectory::Start;
-use crate::vehicle::{AuvModel, Damping, UsvModel};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
@@ -60,26 +58,17 @@ pub fn plan(
     provenance: &Provenance,
     progress: &mut dyn FnMut(StepDone),
 ) -> Result<Plan, PlanError> {
-    let damping = Damping::from_params(&s.auv)?;
-    let auv = AuvModel::new(&s.auv, s.horizon.dt)?;
-    let usv = UsvModel {
-        dt: s.horizon.dt,
-        max_speed: s.usv.max_speed,
-    };
-    let keep_out = floor.keep_out();
-    let initial = initial_state(s, floor, &keep_out)?; // Algorithm 1, line 5
-    let mut start = Start {
-        usv: initial.usv,
-        auvs: initial.auvs.clone(),
-    };
+    let setup = Setup::of(s, floor)?; // Algorithm 1, line 5
+    let (auv, usv, keep_out) = (setup.model.auv, setup.model.usv, &setup.keep_out);
+    let mut start = setup.start();
     let mut rng = ChaCha8Rng::seed_from_u64(s.seed);
     rng.set_stream(STREAM);
     let mut windows = Vec::with_capacity(s.windows);
     let mut track: Vec<[f64; 2]> = Vec::new();
     for w in 0..s.windows {
-        check_start(s, floor, &keep_out, &start, w)?;
+        check_start(s, floor, keep_out, &start, w)?;
         let more = s.horizon.terminal_margin && w + 1 < s.windows;
-        let problem = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone())
+        let problem = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone())
             .with_track(&track)
             .with_terminal(more);
         let clock = Instant::now();
@@ -112,20 +101,7 @@ pub fn plan(
         track.extend_from_slice(&t.usv_p);
         start = next_window(t, None).0; // line 7
     }
-    Ok(Plan {
-        warnings: crate::advice::warnings(&windows, s, floor),
-        format: FORMAT.into(),
-        method: METHOD_RRT_LIKE.into(),
-        shoal_version: env!("CARGO_PKG_VERSION").into(),
-        scenario_source: provenance.scenario_source.clone(),
-        overrides: provenance.overrides.clone(),
-        scenario: s.clone(),
-        seafloor: provenance.seafloor.record(floor),
-        model: ModelRecord { damping, auv, usv },
-        metrics: mission(&windows, floor, s),
-        initial,
-        windows,
-    })
+    Ok(setup.plan(s, floor, provenance, METHOD_RRT_LIKE, windows))
 }
 
 #[cfg(test)]

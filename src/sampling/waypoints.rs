@@ -8,15 +8,15 @@
 use super::assemble::{window, Sampled};
 use super::validity::{self, Limits};
 use crate::error::PlanError;
-use crate::mission::{check_start, initial_state, next_window};
-use crate::plan::{ModelRecord, Plan, SamplingReport, FORMAT, METHOD_MPC};
-use crate::planner::{mission, Provenance};
+use crate::mission::{check_start, next_window};
+use crate::plan::{Plan, SamplingReport, METHOD_MPC};
+use crate::planner::{Provenance, Setup};
 use crate::scenario::Scenario;
 use crate::seafloor::Seafloor;
 use crate::step2::p4_hamiltonian::longest_path_avoiding;
 use crate::team::TeamProblem;
 use crate::trajectory::{Start, Trajectory};
-use crate::vehicle::{AuvModel, Damping, UsvModel};
+use crate::vehicle::{AuvModel, UsvModel};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -99,12 +99,8 @@ pub fn plan(
         path: path.to_string(),
         why,
     };
-    let damping = Damping::from_params(&s.auv)?;
-    let auv = AuvModel::new(&s.auv, s.horizon.dt)?;
-    let usv = UsvModel {
-        dt: s.horizon.dt,
-        max_speed: s.usv.max_speed,
-    };
+    let setup = Setup::of(s, floor)?;
+    let (auv, usv, keep_out) = (setup.model.auv, setup.model.usv, &setup.keep_out);
     if auv.pu.iter().any(|&b| b <= 0.0) {
         return Err(bad(
             "auv.discretisation = \"euler\" fixes each waypoint by the velocity before it; \
@@ -119,17 +115,12 @@ pub fn plan(
             s.windows
         )));
     }
-    let keep_out = floor.keep_out();
-    let initial = initial_state(s, floor, &keep_out)?;
-    let mut start = Start {
-        usv: initial.usv,
-        auvs: initial.auvs.clone(),
-    };
+    let mut start = setup.start();
     let l = Limits::of(s);
     let mut windows = Vec::with_capacity(s.windows);
     let mut track: Vec<[f64; 2]> = Vec::new();
     for (w, ww) in file.windows.iter().enumerate() {
-        check_start(s, floor, &keep_out, &start, w)?;
+        check_start(s, floor, keep_out, &start, w)?;
         let t = trajectory(s, &auv, &usv, &start, ww)
             .map_err(|why| bad(format!("windows[{w}].{why}")))?;
         let chains: Vec<Vec<usize>> = (1..t.usv_p.len())
@@ -142,7 +133,7 @@ pub fn plan(
             })
             .collect();
         let more = s.horizon.terminal_margin && w + 1 < s.windows;
-        let problem = TeamProblem::new(s, floor, &keep_out, auv, usv, start.clone())
+        let problem = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone())
             .with_track(&track)
             .with_terminal(more);
         let report = SamplingReport {
@@ -167,20 +158,7 @@ pub fn plan(
         track.extend_from_slice(&t.usv_p);
         start = next_window(&t, None).0;
     }
-    Ok(Plan {
-        warnings: crate::advice::warnings(&windows, s, floor),
-        format: FORMAT.into(),
-        method: file.method.clone(),
-        shoal_version: env!("CARGO_PKG_VERSION").into(),
-        scenario_source: provenance.scenario_source.clone(),
-        overrides: provenance.overrides.clone(),
-        scenario: s.clone(),
-        seafloor: provenance.seafloor.record(floor),
-        model: ModelRecord { damping, auv, usv },
-        metrics: mission(&windows, floor, s),
-        initial,
-        windows,
-    })
+    Ok(setup.plan(s, floor, provenance, &file.method, windows))
 }
 
 /// "seed 3; …": the file's seed and notes, as the plan records them.

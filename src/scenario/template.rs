@@ -405,7 +405,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "initial.auvs" => {
             "P_n[0] = [x, y, z], metres, one per AUV (exactly team.auvs of them), z < 0; the \
              AUVs start at rest. Leave it out (or empty) to draw them from `seed` within d_s of \
-             initial.usv, as without [initial] (a start on a real grid for any team size)."
+             initial.usv, as without an initial state (a start on a real grid for any team \
+             size)."
         }
         _ => return None,
     })

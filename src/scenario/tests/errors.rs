@@ -132,9 +132,12 @@ fn wrong_type_of_sections_enums_and_dates() {
 
 #[test]
 fn missing_key_in_initial() {
-    let e = parse("seed = 2\n[initial]\nusv = [0, 0]\n").unwrap_err();
+    let e = parse("seed = 2\n[initial]\nauvs = [[0, 0, -10]]\n").unwrap_err();
     assert!(matches!(e, ScenarioError::MissingKey { .. }), "{e:?}");
-    assert_located(&e, 2, "initial.auvs");
+    assert_located(&e, 2, "initial.usv");
+    // the USV alone is a start: the AUVs are drawn from the seed about it
+    let s = parse("seed = 2\n[initial]\nusv = [10, 20]\n").unwrap();
+    assert_eq!(s.initial.unwrap().auvs, Vec::<[f64; 3]>::new());
 }
 
 #[test]
@@ -416,10 +419,10 @@ fn override_errors_are_reported_against_the_override() {
     assert_eq!(e.source_name(), "--set acoustic.sonar_range=500");
     assert_eq!(e.key(), Some("acoustic.max_range"));
 
-    let e = parse_with("", &["initial.usv=[0,0]"]).unwrap_err();
+    let e = parse_with("", &["initial.auvs=[[0,0,-10]]"]).unwrap_err();
     assert!(matches!(e, ScenarioError::MissingKey { .. }), "{e:?}");
-    assert_eq!(e.source_name(), "--set initial.usv=[0,0]");
-    assert_eq!(e.key(), Some("initial.auvs"));
+    assert_eq!(e.source_name(), "--set initial.auvs=[[0,0,-10]]");
+    assert_eq!(e.key(), Some("initial.usv"));
 
     let e = parse_with("", &["team.auvs=2", "initial={usv=[0,0], auvs=[[0,0,-1]]}"]).unwrap_err();
     assert_eq!(
