@@ -289,3 +289,40 @@ fn cli_compare_writes_the_table_and_the_summary() {
         "{stderr}"
     );
 }
+
+#[test]
+fn compare_adds_a_row_for_each_waypoints_file_timed_by_its_planner() {
+    let s = scenario_with(&["horizon.steps=6", "team.auvs=2", "seed=3"]);
+    let floor = floor_of(&s);
+    let mpc = Planner::new(&s, &floor).run().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let name = shoal::compare::waypoints_name("default", 2, 3);
+    std::fs::write(
+        dir.path().join(name),
+        serde_json::to_string(&waypoints_of(&mpc)).unwrap(),
+    )
+    .unwrap();
+    let study = shoal::compare::Study {
+        bases: vec![shoal::compare::Base {
+            name: "default".into(),
+            scenario: scenario_with(&["horizon.steps=6"]),
+            dir: ".".into(),
+        }],
+        methods: vec![shoal::compare::Method::Mpc],
+        auvs: vec![1, 2],
+        seeds: vec![3],
+        waypoints: Some(dir.path().to_path_buf()),
+    };
+    assert_eq!(study.runs(), 3);
+    let rows = shoal::compare::run(&study, &mut |_, _| {}).unwrap();
+    assert_eq!(rows.len(), 3);
+    let replayed = &rows[2];
+    assert_eq!(
+        (replayed.method.as_str(), replayed.auvs),
+        ("mpc-replayed", 2)
+    );
+    assert_eq!(replayed.status, "passed", "{replayed:?}");
+    assert_eq!(replayed.wall_s, 1.0);
+    // the MPC's own paths, replayed: the same energy as the MPC's row
+    assert!((replayed.energy - rows[1].energy).abs() <= 1e-6 * rows[1].energy);
+}

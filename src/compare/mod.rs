@@ -116,9 +116,19 @@ impl Study {
         Ok(())
     }
 
-    /// How many runs the study makes.
+    /// How many runs the study makes: every method's, and one per waypoints file present.
     pub fn runs(&self) -> usize {
-        self.bases.len() * self.methods.len() * self.auvs.len() * self.seeds.len()
+        let files = match &self.waypoints {
+            Some(dir) => self
+                .bases
+                .iter()
+                .flat_map(|b| self.auvs.iter().map(move |n| (b, n)))
+                .flat_map(|(b, n)| self.seeds.iter().map(move |seed| (b, n, seed)))
+                .filter(|(b, n, seed)| dir.join(waypoints_name(&b.name, **n, **seed)).exists())
+                .count(),
+            None => 0,
+        };
+        self.bases.len() * self.methods.len() * self.auvs.len() * self.seeds.len() + files
     }
 }
 
@@ -154,7 +164,7 @@ pub fn run(
                     rows.push(planned.row);
                 }
                 if let Some(dir) = &study.waypoints {
-                    let file = dir.join(format!("{}-n{n}-s{seed}.json", base.name));
+                    let file = dir.join(waypoints_name(&base.name, n, seed));
                     if file.exists() {
                         let planned = plan_one(base, &s, Made::From(&file));
                         progress(rows.len(), &planned);
@@ -165,6 +175,11 @@ pub fn run(
         }
     }
     Ok(rows)
+}
+
+/// The waypoints file of a run in `Study::waypoints`: `BASE-nN-sSEED.json`.
+pub fn waypoints_name(base: &str, auvs: usize, seed: u64) -> String {
+    format!("{base}-n{auvs}-s{seed}.json")
 }
 
 /// How a run's plan is made: by one of shoal's planners, or from a waypoints file.
