@@ -77,12 +77,12 @@ impl Compare {
             .map(|(run, y)| chart.backend_coord(&(self.x(run), y)))
             .collect();
         // Candidates: anchor (data), the label box relative to it (pixels), in order of
-        // preference.
+        // preference; below the line first, clear of the scenario names along the top.
         let mid = 0.5 * (x_max - 0.5);
         let (xs, ys) = chart.plotting_area().get_pixel_range();
         let mut best: Option<(usize, (f64, [i32; 2]))> = None;
         for (x, dx) in [(x_max, -w - 10), (-0.5, 10), (mid, -w / 2)] {
-            for dy in [-h - 6, 6] {
+            for dy in [6, -h - 6] {
                 let a = chart.backend_coord(&(x, y));
                 let (x0, y0) = (a.0 + dx - 4, a.1 + dy - 2);
                 let (x1, y1) = (x0 + w + 8, y0 + h + 4);
