@@ -326,3 +326,21 @@ fn compare_adds_a_row_for_each_waypoints_file_timed_by_its_planner() {
     // the MPC's own paths, replayed: the same energy as the MPC's row
     assert!((replayed.energy - rows[1].energy).abs() <= 1e-6 * rows[1].energy);
 }
+
+#[test]
+fn a_sampled_plan_is_drawn_viewed_and_exported_like_any_plan() {
+    let s = scenario_with(&["team.auvs=2", "horizon.steps=8"]);
+    let floor = floor_of(&s);
+    let plan = rrt_like(&s, &floor).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let figures = shoal::figures::write_all(&plan, &floor, &dir.path().join("figures")).unwrap();
+    assert!(
+        figures.len() >= 2 * shoal::figures::FIGURES.len(),
+        "{figures:?}"
+    );
+    let csv = dir.path().join("positions.csv");
+    let (rows, _) = shoal::positions::write_csv(&plan, &csv).unwrap();
+    assert_eq!(rows, 3 * (s.horizon.steps + 1));
+    let html = shoal::viewer::render_html(&plan, &floor).unwrap();
+    assert!(html.len() > 10_000);
+}
