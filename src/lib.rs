@@ -51,6 +51,7 @@ pub mod sampling;
 pub mod scenario;
 pub mod seafloor;
 pub mod sim;
+pub mod sweep;
 pub mod viewer;
 
 #[doc(hidden)]

@@ -197,10 +197,43 @@ enum Command {
         #[arg(long)]
         no_plot: bool,
     },
+    /// Run a study: every combination of its axes (seeds, team sizes, any scenario key) on
+    /// every core, or one shard of it (a Slurm job array's task); one row per run in
+    /// OUT/runs.csv (or OUT/shard-I-of-N.csv). `shoal sweep collect OUT` merges the shards.
+    #[command(args_conflicts_with_subcommands = true)]
+    Sweep {
+        #[command(subcommand)]
+        command: Option<SweepCommand>,
+        /// The study file (TOML: scenario, method, [set], [axes]; see docs/sweep.md).
+        study: Option<PathBuf>,
+        /// Output directory.
+        #[arg(short, long, default_value = "sweep")]
+        out: PathBuf,
+        /// Make only every N-th run from the I-th (0-based), into OUT/shard-I-of-N.csv.
+        /// Default: SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT, or JOB_COMPLETION_INDEX/
+        /// SHOAL_SHARDS, when set; otherwise every run.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Skip the runs the table already has (after an interruption).
+        #[arg(long)]
+        resume: bool,
+        /// Print no progress bar.
+        #[arg(short, long)]
+        quiet: bool,
+    },
     /// Seafloor tools.
     Seafloor {
         #[command(subcommand)]
         command: SeafloorCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum SweepCommand {
+    /// Merge the shard tables of a sweep's directory into DIR/runs.csv, sorted by run.
+    Collect {
+        /// The sweep's output directory.
+        dir: PathBuf,
     },
 }
 
@@ -419,6 +452,25 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 waypoints,
             };
             compare(&study, &out, keep_plans, !no_plot)
+        }
+        Command::Sweep {
+            command: Some(SweepCommand::Collect { dir }),
+            ..
+        } => {
+            let (table, rows) = shoal::sweep::collect(&dir)?;
+            println!("wrote {} ({rows} runs)", table.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Sweep {
+            command: None,
+            study,
+            out,
+            shard,
+            resume,
+            quiet,
+        } => {
+            let study = study.context("give a study file (or `shoal sweep collect DIR`)")?;
+            sweep(&study, out, shard.as_deref(), resume, quiet)
         }
         Command::Export { plan, out, csv } => {
             let csv = out.or(csv).expect("clap requires OUT.csv or --csv");
@@ -1024,6 +1076,71 @@ fn compare(
         out.join("runs.csv").display(),
         out.join("summary.md").display(),
         if figure { " and compare.png/.svg" } else { "" }
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `shoal sweep STUDY`: run it (or its shard) with a progress bar; print the totals.
+fn sweep(
+    path: &Path,
+    out: PathBuf,
+    shard: Option<&str>,
+    resume: bool,
+    quiet: bool,
+) -> Result<ExitCode> {
+    let study = shoal::sweep::Study::load(path)?;
+    let shard = match shard {
+        Some(text) => {
+            Some(shoal::sweep::Shard::parse(text).map_err(|e| anyhow::anyhow!("--shard {e}"))?)
+        }
+        None => shoal::sweep::Shard::from_env(|k| std::env::var(k).ok())
+            .map_err(|e| anyhow::anyhow!(e))?,
+    };
+    let opts = shoal::sweep::Options { out, shard, resume };
+    let total = study.runs().len();
+    let bar = match quiet {
+        true => ProgressBar::hidden(),
+        false => ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr()),
+    };
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} runs, {elapsed_precise} elapsed, ETA {eta} {msg}",
+        )
+        .expect("a valid template"),
+    );
+    let counts = std::sync::Mutex::new([0usize; 3]);
+    let outcome = shoal::sweep::run(&study, &opts, &|done| {
+        let mut c = counts.lock().unwrap_or_else(|p| p.into_inner());
+        match done.status.as_str() {
+            "passed" => c[0] += 1,
+            "violated" => c[1] += 1,
+            _ => c[2] += 1,
+        }
+        bar.set_message(format!(
+            "(passed {}, violated {}, failed {})",
+            c[0], c[1], c[2]
+        ));
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    let o = outcome?;
+    println!(
+        "{} of {} runs{}: {} passed, {} violated, {} failed{} in {:.1} s (the runs' own times sum to \
+         {:.1} s: {:.2}× in parallel); wrote {}",
+        o.mine - o.skipped,
+        o.total,
+        match opts.shard {
+            Some(s) => format!(" (shard {}/{}: {} runs)", s.index, s.count, o.mine),
+            None => String::new(),
+        },
+        o.passed,
+        o.violated,
+        o.failed,
+        if o.skipped > 0 { format!(", {} already in the table", o.skipped) } else { String::new() },
+        o.wall_s,
+        o.runs_s,
+        o.runs_s / o.wall_s.max(1e-9),
+        o.table.display()
     );
     Ok(ExitCode::SUCCESS)
 }

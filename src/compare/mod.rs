@@ -194,6 +194,12 @@ enum Source<'a> {
     From(&'a Path, WaypointsFile),
 }
 
+/// Plan scenario `s` with `method` (a relative `seafloor.file` found in `base.dir`), check
+/// the plan and measure it; the row is named after `base`.
+pub fn plan_and_check(base: &Base, s: &Scenario, method: Method) -> Planned {
+    plan_one(base, s, Made::By(method))
+}
+
 /// Plan one run and measure it. A waypoints file's run is timed by the file's own
 /// `solve_time_s` (the other planner's time), not by its import.
 fn plan_one(base: &Base, s: &Scenario, made: Made) -> Planned {

@@ -1,0 +1,332 @@
+//! `shoal sweep`: a study of many runs (seeds, team sizes, any scenario key, floors) described
+//! by one file ([`Study`]), run on every core or in shards (one per task of a Slurm job array),
+//! each run a pure function of its resolved scenario that appends one row to a table
+//! ([`table`]); a run that fails records its error and the sweep goes on (docs/sweep.md).
+
+pub mod study;
+pub mod table;
+
+pub use study::{Axis, Run, Study};
+
+use crate::compare::{plan_and_check, Base, Planned};
+use crate::scenario::{self, Scenario};
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::Instant;
+use thiserror::Error;
+
+/// Errors of a sweep as a whole (a run's own failure is recorded in its row).
+#[derive(Debug, Error)]
+pub enum SweepError {
+    /// The study file cannot be read or is malformed.
+    #[error("{path}: {why}", path = .path.display())]
+    Study {
+        /// The study file.
+        path: PathBuf,
+        /// What is wrong, naming the key.
+        why: String,
+    },
+    /// A table cannot be read or written.
+    #[error("{path}: {why}", path = .path.display())]
+    Table {
+        /// The table file.
+        path: PathBuf,
+        /// Why.
+        why: String,
+    },
+    /// The shard named is not one of the sweep's.
+    #[error("shard {index}/{count}: {why}")]
+    Shard {
+        /// I.
+        index: usize,
+        /// N.
+        count: usize,
+        /// Why.
+        why: String,
+    },
+    /// A shard table to collect does not match the others.
+    #[error("nothing to collect in {0}: no shard-*-of-*.csv table")]
+    NothingToCollect(PathBuf),
+}
+
+/// Which runs this process makes: every N-th from the I-th (0-based).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// I, 0 ≤ I < N.
+    pub index: usize,
+    /// N ≥ 1.
+    pub count: usize,
+}
+
+impl Shard {
+    /// "I/N" (0-based I).
+    pub fn parse(text: &str) -> Result<Shard, String> {
+        let (i, n) = text
+            .split_once('/')
+            .ok_or_else(|| format!("\"{text}\" is not I/N"))?;
+        let num = |t: &str| {
+            t.trim()
+                .parse::<usize>()
+                .map_err(|_| format!("\"{t}\" is not a whole number"))
+        };
+        Shard::new(num(i)?, num(n)?)
+    }
+
+    /// Shard I of N, checked.
+    pub fn new(index: usize, count: usize) -> Result<Shard, String> {
+        if count == 0 || index >= count {
+            return Err(format!("{index}/{count}: need 0 ≤ I < N"));
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// The shard a cluster's job array gives this process: Slurm's SLURM_ARRAY_TASK_ID of
+    /// SLURM_ARRAY_TASK_COUNT (the array 0..N−1), or Kubernetes' JOB_COMPLETION_INDEX of
+    /// SHOAL_SHARDS (an indexed Job's completions); None outside one.
+    pub fn from_env(var: impl Fn(&str) -> Option<String>) -> Result<Option<Shard>, String> {
+        let num = |name: &str| match var(name) {
+            Some(v) => v
+                .trim()
+                .parse::<usize>()
+                .map(Some)
+                .map_err(|_| format!("{name} = \"{v}\" is not a whole number")),
+            None => Ok(None),
+        };
+        match (num("SLURM_ARRAY_TASK_ID")?, num("SLURM_ARRAY_TASK_COUNT")?) {
+            (Some(i), Some(n)) => return Shard::new(i, n).map(Some),
+            (Some(_), None) => {
+                return Err("SLURM_ARRAY_TASK_ID is set without SLURM_ARRAY_TASK_COUNT".into())
+            }
+            _ => {}
+        }
+        match (num("JOB_COMPLETION_INDEX")?, num("SHOAL_SHARDS")?) {
+            (Some(i), Some(n)) => Shard::new(i, n).map(Some),
+            (Some(_), None) => Err(
+                "JOB_COMPLETION_INDEX is set without SHOAL_SHARDS (the Job's completions)".into(),
+            ),
+            _ => Ok(None),
+        }
+    }
+
+    /// The table file of this shard in `dir`.
+    pub fn table(&self, dir: &Path) -> PathBuf {
+        dir.join(format!("shard-{}-of-{}.csv", self.index, self.count))
+    }
+}
+
+/// How a sweep runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Options {
+    /// Where the table (and the plans) go.
+    pub out: PathBuf,
+    /// Only this shard's runs, into its own table; None: every run, into `runs.csv`.
+    pub shard: Option<Shard>,
+    /// Skip the runs already in the table.
+    pub resume: bool,
+}
+
+/// What happened to one run, as the progress listener hears it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Done {
+    /// The run's index.
+    pub index: usize,
+    /// "passed", "violated" or "failed".
+    pub status: String,
+    /// Its wall time, s.
+    pub wall_s: f64,
+}
+
+/// The sweep's totals.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Outcome {
+    /// The table written.
+    pub table: PathBuf,
+    /// Runs of the study (all shards).
+    pub total: usize,
+    /// Runs this process was to make (its shard).
+    pub mine: usize,
+    /// Runs skipped because the table had them (`resume`).
+    pub skipped: usize,
+    /// Runs made now, by status.
+    pub passed: usize,
+    /// Runs whose plan failed its check.
+    pub violated: usize,
+    /// Runs that made no plan.
+    pub failed: usize,
+    /// Wall time of the sweep, s.
+    pub wall_s: f64,
+    /// Sum of the runs' own wall times, s (over the wall time: the parallel speed-up).
+    pub runs_s: f64,
+}
+
+/// The table of a sweep without shards.
+pub fn table_path(dir: &Path) -> PathBuf {
+    dir.join("runs.csv")
+}
+
+/// Run `study` (its shard, if any) on every core of the current rayon pool; `progress` hears of
+/// each run as it ends. Rows are appended as runs finish, then sorted by run.
+pub fn run(
+    study: &Study,
+    opts: &Options,
+    progress: &(dyn Fn(&Done) + Sync),
+) -> Result<Outcome, SweepError> {
+    let clock = Instant::now();
+    let runs = study.runs();
+    let keys: Vec<String> = study.axes.iter().map(|a| a.key.clone()).collect();
+    let header = table::header(&keys);
+    let path = match opts.shard {
+        Some(s) => s.table(&opts.out),
+        None => table_path(&opts.out),
+    };
+    if !opts.resume && path.exists() {
+        std::fs::remove_file(&path).map_err(|e| SweepError::Table {
+            path: path.clone(),
+            why: format!("cannot start it afresh: {e}"),
+        })?;
+    }
+    let done: Vec<usize> = match table::read(&path)? {
+        Some((h, records)) if h == header => records
+            .iter()
+            .filter_map(|r| r.get(0).and_then(|v| v.parse().ok()))
+            .collect(),
+        _ => Vec::new(),
+    };
+    let mine: Vec<&Run> = runs
+        .iter()
+        .filter(|r| opts.shard.map_or(true, |s| r.index % s.count == s.index))
+        .collect();
+    let todo: Vec<&&Run> = mine.iter().filter(|r| !done.contains(&r.index)).collect();
+    let appender = Mutex::new(table::Appender::open(&path, &header)?);
+    let base = base_of(study)?;
+    let outcome = Mutex::new(Outcome {
+        table: path.clone(),
+        total: runs.len(),
+        mine: mine.len(),
+        skipped: mine.len() - todo.len(),
+        ..Outcome::default()
+    });
+    let write_error = Mutex::new(None);
+    todo.par_iter().for_each(|run| {
+        let planned = run_one(study, &base, run);
+        let r = &planned.row;
+        if study.keep_plans {
+            if let Some(plan) = &planned.plan {
+                let file = opts
+                    .out
+                    .join("plans")
+                    .join(format!("run-{:06}.json", run.index));
+                let _ = crate::output::write_plan(plan, &file);
+            }
+        }
+        let rec = table::record(run.index, &keys, &run.values, r);
+        if let Err(e) = appender
+            .lock()
+            .map(|mut a| a.append(&rec))
+            .unwrap_or(Ok(()))
+        {
+            *write_error.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
+        }
+        {
+            let mut o = outcome.lock().unwrap_or_else(|p| p.into_inner());
+            match r.status.as_str() {
+                "passed" => o.passed += 1,
+                "violated" => o.violated += 1,
+                _ => o.failed += 1,
+            }
+            o.runs_s += r.wall_s;
+        }
+        progress(&Done {
+            index: run.index,
+            status: r.status.clone(),
+            wall_s: r.wall_s,
+        });
+    });
+    if let Some(why) = write_error.into_inner().unwrap_or_else(|p| p.into_inner()) {
+        return Err(SweepError::Table { path, why });
+    }
+    drop(appender);
+    let (_, records) = table::read(&path)?.unwrap_or_default();
+    table::write_sorted(&path, &header, records)?;
+    let mut o = outcome.into_inner().unwrap_or_else(|p| p.into_inner());
+    o.wall_s = clock.elapsed().as_secs_f64();
+    Ok(o)
+}
+
+/// The study's base: its name (the study file's stem) and where its scenario's relative
+/// paths resolve.
+fn base_of(study: &Study) -> Result<Base, SweepError> {
+    let name = study
+        .path
+        .file_stem()
+        .map_or("study".into(), |s| s.to_string_lossy().into_owned());
+    let dir = match &study.scenario {
+        Some(p) => p.parent().unwrap_or(Path::new(".")).to_path_buf(),
+        None => study.path.parent().unwrap_or(Path::new(".")).to_path_buf(),
+    };
+    Ok(Base {
+        name,
+        scenario: Scenario::default(),
+        dir,
+    })
+}
+
+/// One run: its scenario resolved (a bad override fails the run, not the sweep), planned,
+/// checked and measured.
+fn run_one(study: &Study, base: &Base, run: &Run) -> Planned {
+    let overrides = study.overrides(run);
+    let resolved = match &study.scenario {
+        Some(path) => scenario::load(path, &overrides),
+        None => scenario::default_with(&overrides),
+    };
+    match resolved {
+        Ok(s) => plan_and_check(base, &s, study.method),
+        Err(e) => {
+            let mut row = crate::compare::Row::key(&base.name, study.method.name(), 0, 0);
+            row.status = "failed".into();
+            row.error = e.to_string();
+            row.wall_s = 0.0;
+            Planned { row, plan: None }
+        }
+    }
+}
+
+/// Merge the shard tables of `dir` (`shard-I-of-N.csv`) into `dir/runs.csv`, sorted by run.
+/// Returns the table and its number of rows.
+pub fn collect(dir: &Path) -> Result<(PathBuf, usize), SweepError> {
+    let mut shards: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| SweepError::Table {
+            path: dir.to_path_buf(),
+            why: e.to_string(),
+        })?
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("shard-") && n.ends_with(".csv"))
+        })
+        .collect();
+    shards.sort();
+    let mut header = None;
+    let mut records = Vec::new();
+    for p in &shards {
+        if let Some((h, recs)) = table::read(p)? {
+            match &header {
+                Some(first) if first != &h => {
+                    return Err(SweepError::Table {
+                        path: p.clone(),
+                        why: "its columns differ from the other shards' (another study?)".into(),
+                    })
+                }
+                _ => header = Some(h),
+            }
+            records.extend(recs);
+        }
+    }
+    let header = header.ok_or_else(|| SweepError::NothingToCollect(dir.to_path_buf()))?;
+    let path = table_path(dir);
+    let rows = table::write_sorted(&path, &header, records)?;
+    Ok((path, rows))
+}

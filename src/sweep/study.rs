@@ -1,0 +1,247 @@
+//! The study file of `shoal sweep` (TOML; docs/sweep.md): a base scenario, fixed overrides and
+//! the axes whose Cartesian product makes the runs.
+//!
+//! ```toml
+//! scenario = "mission.toml"   # relative to this file; absent: the embedded default
+//! method = "mpc"              # or "rrt-like"
+//! keep_plans = false          # also write every run's plan.json
+//!
+//! [set]                       # overrides of every run
+//! "horizon.steps" = 10
+//!
+//! [axes]                      # the runs: every combination, the first axis slowest
+//! seed = "1..100"             # a range, both ends included
+//! "team.auvs" = [3, 5, 10, 20]
+//! ```
+
+use super::SweepError;
+use crate::compare::Method;
+use std::path::{Path, PathBuf};
+use toml_edit::{DocumentMut, Item, Value};
+
+/// One axis: a scenario key and the values it takes, each as TOML text.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    /// The dotted scenario key, e.g. "team.auvs".
+    pub key: String,
+    /// Its values, as TOML (e.g. `5`, `"a.tif"`), in order.
+    pub values: Vec<String>,
+}
+
+/// A parsed study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Study {
+    /// The study file (names errors; relative paths resolve against its directory).
+    pub path: PathBuf,
+    /// The base scenario file, resolved; None: the embedded default.
+    pub scenario: Option<PathBuf>,
+    /// The planner.
+    pub method: Method,
+    /// Whether every run's plan is written.
+    pub keep_plans: bool,
+    /// Overrides of every run, as `key=value`.
+    pub set: Vec<String>,
+    /// The axes, in the file's order.
+    pub axes: Vec<Axis>,
+}
+
+/// One run: its index and each axis's value (in the axes' order).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    /// From 0, in the order of the Cartesian product (the first axis slowest).
+    pub index: usize,
+    /// The value of each axis, as TOML text.
+    pub values: Vec<String>,
+}
+
+impl Study {
+    /// Read and check a study file.
+    pub fn load(path: &Path) -> Result<Study, SweepError> {
+        let text = std::fs::read_to_string(path).map_err(|e| SweepError::Study {
+            path: path.to_path_buf(),
+            why: format!("cannot read: {e}"),
+        })?;
+        Study::parse(&text, path)
+    }
+
+    /// Parse study `text` (from `path`).
+    pub fn parse(text: &str, path: &Path) -> Result<Study, SweepError> {
+        let bad = |why: String| SweepError::Study {
+            path: path.to_path_buf(),
+            why,
+        };
+        let doc: DocumentMut = text.parse().map_err(|e| bad(format!("not TOML: {e}")))?;
+        let dir = path.parent().unwrap_or(Path::new("."));
+        let mut study = Study {
+            path: path.to_path_buf(),
+            scenario: None,
+            method: Method::Mpc,
+            keep_plans: false,
+            set: Vec::new(),
+            axes: Vec::new(),
+        };
+        for (key, item) in doc.iter() {
+            match (key, item) {
+                ("scenario", Item::Value(Value::String(s))) => {
+                    study.scenario = Some(dir.join(s.value()));
+                }
+                ("method", Item::Value(Value::String(s))) => {
+                    study.method = match s.value().as_str() {
+                        "mpc" => Method::Mpc,
+                        "rrt-like" => Method::RrtLike,
+                        other => {
+                            return Err(bad(format!(
+                                "method = \"{other}\": allowed are \"mpc\" and \"rrt-like\""
+                            )))
+                        }
+                    };
+                }
+                ("keep_plans", Item::Value(Value::Boolean(b))) => study.keep_plans = *b.value(),
+                ("set", Item::Table(t)) => {
+                    for (k, v) in t.iter() {
+                        let v = v
+                            .as_value()
+                            .ok_or_else(|| bad(format!("set.\"{k}\": must be a value")))?;
+                        study.set.push(format!("{k}={}", v.to_string().trim()));
+                    }
+                }
+                ("axes", Item::Table(t)) => {
+                    for (k, v) in t.iter() {
+                        let values =
+                            axis_values(v).map_err(|why| bad(format!("axes.\"{k}\": {why}")))?;
+                        study.axes.push(Axis {
+                            key: k.to_string(),
+                            values,
+                        });
+                    }
+                }
+                ("scenario" | "method" | "keep_plans" | "set" | "axes", _) => {
+                    return Err(bad(format!(
+                        "{key}: wrong type (scenario: a path, method: \"mpc\" or \"rrt-like\", \
+                         keep_plans: true or false, set and axes: tables)"
+                    )))
+                }
+                _ => {
+                    return Err(bad(format!(
+                        "unknown key \"{key}\"; allowed are scenario, method, keep_plans, [set] \
+                         and [axes]"
+                    )))
+                }
+            }
+        }
+        if let Some(a) = study.axes.iter().find(|a| a.values.is_empty()) {
+            return Err(bad(format!("axes.\"{}\": has no value", a.key)));
+        }
+        Ok(study)
+    }
+
+    /// Every run, in order.
+    pub fn runs(&self) -> Vec<Run> {
+        let total: usize = self.axes.iter().map(|a| a.values.len()).product();
+        (0..total)
+            .map(|index| {
+                let mut rest = index;
+                let mut values = vec![String::new(); self.axes.len()];
+                for (i, a) in self.axes.iter().enumerate().rev() {
+                    values[i] = a.values[rest % a.values.len()].clone();
+                    rest /= a.values.len();
+                }
+                Run { index, values }
+            })
+            .collect()
+    }
+
+    /// The overrides of `run`: the study's `set`, then its axes' values.
+    pub fn overrides(&self, run: &Run) -> Vec<String> {
+        let axes = self
+            .axes
+            .iter()
+            .zip(&run.values)
+            .map(|(a, v)| format!("{}={v}", a.key));
+        self.set.iter().cloned().chain(axes).collect()
+    }
+}
+
+/// An axis's values: an array, or a range "a..b" of whole numbers (both ends included).
+fn axis_values(item: &Item) -> Result<Vec<String>, String> {
+    match item.as_value() {
+        Some(Value::Array(a)) => Ok(a.iter().map(|v| v.to_string().trim().to_string()).collect()),
+        Some(Value::String(s)) => {
+            let text = s.value();
+            let (a, b) = text
+                .split_once("..")
+                .ok_or_else(|| format!("\"{text}\" is neither an array nor a range \"a..b\""))?;
+            let b = b.trim_start_matches('=');
+            let num = |t: &str| {
+                t.trim()
+                    .parse::<i64>()
+                    .map_err(|_| format!("\"{text}\": \"{t}\" is not a whole number"))
+            };
+            let (a, b) = (num(a)?, num(b)?);
+            if a > b {
+                return Err(format!("\"{text}\": the range runs backwards"));
+            }
+            Ok((a..=b).map(|v| v.to_string()).collect())
+        }
+        Some(v) => Ok(vec![v.to_string().trim().to_string()]),
+        None => Err("must be an array of values or a range \"a..b\"".into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Study, SweepError> {
+        Study::parse(text, Path::new("dir/study.toml"))
+    }
+
+    #[test]
+    fn a_study_is_its_base_its_overrides_and_the_product_of_its_axes() {
+        let s = parse(
+            "scenario = \"m.toml\"\nmethod = \"rrt-like\"\n[set]\n\"horizon.steps\" = 10\n\
+             [axes]\nseed = \"1..3\"\n\"team.auvs\" = [3, 5]\n",
+        )
+        .unwrap();
+        assert_eq!(s.scenario, Some(PathBuf::from("dir/m.toml")));
+        assert_eq!(s.method, Method::RrtLike);
+        let runs = s.runs();
+        assert_eq!(runs.len(), 6);
+        assert_eq!(runs[0].values, ["1", "3"]);
+        assert_eq!(runs[1].values, ["1", "5"]);
+        assert_eq!(runs[5].values, ["3", "5"]);
+        assert_eq!(
+            s.overrides(&runs[3]),
+            ["horizon.steps=10", "seed=2", "team.auvs=5"]
+        );
+    }
+
+    #[test]
+    fn no_axis_is_one_run_and_an_axis_of_strings_keeps_its_quotes() {
+        let s = parse("").unwrap();
+        assert_eq!(s.runs().len(), 1);
+        let s = parse("[axes]\n\"seafloor.file\" = [\"a.tif\", \"b.asc\"]\n").unwrap();
+        assert_eq!(s.overrides(&s.runs()[1]), ["seafloor.file=\"b.asc\""]);
+    }
+
+    #[test]
+    fn bad_studies_name_the_file_and_the_key() {
+        for (text, want) in [
+            ("method = \"simplex\"", "method = \"simplex\": allowed are"),
+            ("runs = 3", "unknown key \"runs\""),
+            (
+                "[axes]\nseed = \"5..1\"",
+                "axes.\"seed\": \"5..1\": the range runs backwards",
+            ),
+            ("[axes]\nseed = \"x\"", "neither an array nor a range"),
+            ("[axes]\nseed = []", "axes.\"seed\": has no value"),
+            ("keep_plans = 3", "keep_plans: wrong type"),
+        ] {
+            let e = parse(text).unwrap_err().to_string();
+            assert!(
+                e.contains("dir/study.toml") && e.contains(want),
+                "{text}: {e}"
+            );
+        }
+    }
+}
