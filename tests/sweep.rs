@@ -225,3 +225,31 @@ fn cli_sweep_and_collect() {
     assert_eq!(code, 2);
     assert!(stderr.contains("study.toml: axes.\"seed\""), "{stderr}");
 }
+
+#[test]
+fn a_simulated_study_records_each_plans_localization() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = study_in(
+        dir.path(),
+        "simulate = true\n[set]\n\"horizon.steps\" = 6\n[axes]\n\"team.auvs\" = [0, 2]\n",
+    );
+    let out = dir.path().join("out");
+    let opts = Options {
+        out: out.clone(),
+        shard: None,
+        resume: false,
+    };
+    sweep::run(&study, &opts, &|_| {}).unwrap();
+    let mut r = csv::Reader::from_path(sweep::table_path(&out)).unwrap();
+    let header = r.headers().unwrap().clone();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let recs: Vec<csv::StringRecord> = r.records().map(Result::unwrap).collect();
+    // the failed run has no flight; the other was flown and localized by its chain
+    assert_eq!(&recs[0][col("sim_status")], "no plan");
+    assert_eq!(&recs[1][col("sim_status")], "flown");
+    assert_eq!(&recs[1][col("sim_below_floor")], "0");
+    let num = |name: &str| recs[1][col(name)].parse::<f64>().unwrap();
+    assert!(num("sim_tracking_rms_m") < 5.0);
+    assert!(num("sim_chain_end_m") < num("sim_dead_reckoning_end_m"));
+    assert!(num("sim_all_links_end_m").is_finite());
+}

@@ -138,6 +138,8 @@ pub struct Planned {
     pub row: Row,
     /// The plan, when one was made.
     pub plan: Option<Plan>,
+    /// The floor it was made over.
+    pub floor: Option<crate::seafloor::Seafloor>,
 }
 
 /// Run every (base, N, seed, method) of `study`, in that order; `progress` hears of each run as
@@ -210,7 +212,11 @@ fn plan_one(base: &Base, s: &Scenario, made: Made) -> Planned {
             Err(e) => {
                 let mut row = Row::key(&base.name, "waypoints", s.team.auvs, s.seed);
                 row.fail(&e, 0.0);
-                return Planned { row, plan: None };
+                return Planned {
+                    row,
+                    plan: None,
+                    floor: None,
+                };
             }
         },
     };
@@ -252,11 +258,16 @@ fn plan_one(base: &Base, s: &Scenario, made: Made) -> Planned {
             Planned {
                 row,
                 plan: Some(plan),
+                floor: Some(floor),
             }
         }
         Err(e) => {
             row.fail(&e, wall_s);
-            Planned { row, plan: None }
+            Planned {
+                row,
+                plan: None,
+                floor: None,
+            }
         }
     }
 }

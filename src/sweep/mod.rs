@@ -3,6 +3,7 @@
 //! each run a pure function of its resolved scenario that appends one row to a table
 //! ([`table`]); a run that fails records its error and the sweep goes on (docs/sweep.md).
 
+mod flown;
 pub mod study;
 pub mod table;
 
@@ -133,7 +134,7 @@ pub struct Done {
     pub index: usize,
     /// "passed", "violated" or "failed".
     pub status: String,
-    /// Its wall time, s.
+    /// Its wall time (planning, checking and, with `simulate`, flying), s.
     pub wall_s: f64,
 }
 
@@ -175,7 +176,10 @@ pub fn run(
     let clock = Instant::now();
     let runs = study.runs();
     let keys: Vec<String> = study.axes.iter().map(|a| a.key.clone()).collect();
-    let header = table::header(&keys);
+    let mut header = table::header(&keys);
+    if study.simulate {
+        flown::COLUMNS.iter().for_each(|c| header.push_field(c));
+    }
     let path = match opts.shard {
         Some(s) => s.table(&opts.out),
         None => table_path(&opts.out),
@@ -209,6 +213,7 @@ pub fn run(
     });
     let write_error = Mutex::new(None);
     todo.par_iter().for_each(|run| {
+        let clock = Instant::now();
         let planned = run_one(study, &base, run);
         let r = &planned.row;
         if study.keep_plans {
@@ -220,7 +225,11 @@ pub fn run(
                 let _ = crate::output::write_plan(plan, &file);
             }
         }
-        let rec = table::record(run.index, &keys, &run.values, r);
+        let mut rec = table::record(run.index, &keys, &run.values, r);
+        if study.simulate {
+            let sim = flown::fields(planned.plan.as_ref(), planned.floor.as_ref());
+            sim.iter().for_each(|f| rec.push_field(f));
+        }
         if let Err(e) = appender
             .lock()
             .map(|mut a| a.append(&rec))
@@ -228,6 +237,7 @@ pub fn run(
         {
             *write_error.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
         }
+        let wall_s = clock.elapsed().as_secs_f64();
         {
             let mut o = outcome.lock().unwrap_or_else(|p| p.into_inner());
             match r.status.as_str() {
@@ -235,12 +245,12 @@ pub fn run(
                 "violated" => o.violated += 1,
                 _ => o.failed += 1,
             }
-            o.runs_s += r.wall_s;
+            o.runs_s += wall_s;
         }
         progress(&Done {
             index: run.index,
             status: r.status.clone(),
-            wall_s: r.wall_s,
+            wall_s,
         });
     });
     if let Some(why) = write_error.into_inner().unwrap_or_else(|p| p.into_inner()) {
@@ -287,7 +297,11 @@ fn run_one(study: &Study, base: &Base, run: &Run) -> Planned {
             row.status = "failed".into();
             row.error = e.to_string();
             row.wall_s = 0.0;
-            Planned { row, plan: None }
+            Planned {
+                row,
+                plan: None,
+                floor: None,
+            }
         }
     }
 }

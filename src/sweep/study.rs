@@ -5,6 +5,7 @@
 //! scenario = "mission.toml"   # relative to this file; absent: the embedded default
 //! method = "mpc"              # or "rrt-like"
 //! keep_plans = false          # also write every run's plan.json
+//! simulate = false            # also fly every plan and record its localization
 //!
 //! [set]                       # overrides of every run
 //! "horizon.steps" = 10
@@ -39,6 +40,8 @@ pub struct Study {
     pub method: Method,
     /// Whether every run's plan is written.
     pub keep_plans: bool,
+    /// Whether every run's plan is also flown (`shoal simulate`) and its localization recorded.
+    pub simulate: bool,
     /// Overrides of every run, as `key=value`.
     pub set: Vec<String>,
     /// The axes, in the file's order.
@@ -77,6 +80,7 @@ impl Study {
             scenario: None,
             method: Method::Mpc,
             keep_plans: false,
+            simulate: false,
             set: Vec::new(),
             axes: Vec::new(),
         };
@@ -97,6 +101,7 @@ impl Study {
                     };
                 }
                 ("keep_plans", Item::Value(Value::Boolean(b))) => study.keep_plans = *b.value(),
+                ("simulate", Item::Value(Value::Boolean(b))) => study.simulate = *b.value(),
                 ("set", Item::Table(t)) => {
                     for (k, v) in t.iter() {
                         let v = v
@@ -118,13 +123,13 @@ impl Study {
                 ("scenario" | "method" | "keep_plans" | "set" | "axes", _) => {
                     return Err(bad(format!(
                         "{key}: wrong type (scenario: a path, method: \"mpc\" or \"rrt-like\", \
-                         keep_plans: true or false, set and axes: tables)"
+                         keep_plans and simulate: true or false, set and axes: tables)"
                     )))
                 }
                 _ => {
                     return Err(bad(format!(
-                        "unknown key \"{key}\"; allowed are scenario, method, keep_plans, [set] \
-                         and [axes]"
+                        "unknown key \"{key}\"; allowed are scenario, method, keep_plans, \
+                         simulate, [set] and [axes]"
                     )))
                 }
             }
