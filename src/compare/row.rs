@@ -6,15 +6,6 @@ use crate::error::PlanError;
 use crate::plan::Plan;
 use serde::{Deserialize, Serialize};
 
-/// The check's families whose worst margins a row records, with their column names.
-pub const MARGINS: [(&str, &str); 5] = [
-    ("C2_2 floor clearance (segments)", "margin_floor_m"),
-    ("C1_6 sonar range at k = 0, K", "margin_c1_6_m"),
-    ("C1_7 AUV speed", "margin_speed_mps"),
-    ("C1_14 heading rate", "margin_heading_radps"),
-    ("C1_5 range ≤ d_max", "margin_c1_5_m"),
-];
-
 /// One run: (scenario, method, N, seed) and its measures. NaN where the run made no plan.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
@@ -140,10 +131,12 @@ impl Row {
             self.usv_to_destination_m = (last[0] - dest[0]).hypot(last[1] - dest[1]);
         }
         self.out_of_band = plan.windows.iter().map(|w| w.links.out_of_band.len()).sum();
-        for (family, column) in MARGINS {
-            let margin = report.family(family).map_or(f64::NAN, |f| f.worst_margin);
-            *self.margin_mut(column) = margin;
-        }
+        let margin = |family: &str| report.family(family).map_or(f64::NAN, |f| f.worst_margin);
+        self.margin_floor_m = margin("C2_2 floor clearance (segments)");
+        self.margin_c1_6_m = margin("C1_6 sonar range at k = 0, K");
+        self.margin_speed_mps = margin("C1_7 AUV speed");
+        self.margin_heading_radps = margin("C1_14 heading rate");
+        self.margin_c1_5_m = margin("C1_5 range ≤ d_max");
         for s in plan.windows.iter().filter_map(|w| w.sampling.as_ref()) {
             self.samples_drawn += s.drawn;
             self.samples_kept += s.kept;
@@ -155,15 +148,5 @@ impl Row {
         self.status = "failed".into();
         self.error = e.to_string();
         self.wall_s = wall_s;
-    }
-
-    fn margin_mut(&mut self, column: &str) -> &mut f64 {
-        match column {
-            "margin_floor_m" => &mut self.margin_floor_m,
-            "margin_c1_6_m" => &mut self.margin_c1_6_m,
-            "margin_speed_mps" => &mut self.margin_speed_mps,
-            "margin_heading_radps" => &mut self.margin_heading_radps,
-            _ => &mut self.margin_c1_5_m,
-        }
     }
 }

@@ -47,6 +47,17 @@ pub fn input_for(model: &AuvModel, v0: [f64; 3], v1: [f64; 3]) -> [f64; 3] {
     })
 }
 
+/// On axis i the next waypoint is affine in the next velocity V': P' = P + A_p V + B_p (V' −
+/// A_v V)/B_v = `free` + `gain`·V'. This is `free`, the waypoint at V' = 0.
+fn free(model: &AuvModel, p0: [f64; 3], v0: [f64; 3], i: usize) -> f64 {
+    p0[i] + model.pv[i] * v0[i] - model.pu[i] * model.vv[i] * v0[i] / model.vu[i]
+}
+
+/// The `gain` of [`free`]'s map, B_p/B_v (0 for Euler, whose next waypoint no input moves).
+fn gain(model: &AuvModel, i: usize) -> f64 {
+    model.pu[i] / model.vu[i]
+}
+
 /// Draw one AUV step from (p0, v0); `Err` when the drawn horizontal position is off the grid
 /// or no depth between the floor and the surface clearance is reachable there.
 pub fn auv_step<R: Rng>(
@@ -79,8 +90,7 @@ pub fn auv_step<R: Rng>(
         z_floor + l.floor_clearance + 1e-9,
         -l.surface_clearance - 1e-9,
     );
-    let a = p0[2] + model.pv[2] * v0[2] - model.pu[2] * model.vv[2] * v0[2] / model.vu[2];
-    let b = model.pu[2] / model.vu[2];
+    let (a, b) = (free(model, p0, v0, 2), gain(model, 2));
     let (mut vz_lo, mut vz_hi) = (-vz_max, vz_max);
     if b > 0.0 {
         vz_lo = vz_lo.max((lo - a) / b);
@@ -101,8 +111,8 @@ pub fn auv_step<R: Rng>(
 /// other end): the waypoint uniform on the horizontal disc of radius d_s about `to` and in the
 /// water column there within d_s of it, the velocity and input the model needs to reach it
 /// (the inverse of the map of [`auv_step`]). The step may break the speed or heading limit;
-/// the caller tests it. Sampling the links' reach as well as the vehicle's keeps a team
-/// together where the vehicle's reach alone would take it apart (ours; docs/baseline.md).
+/// the caller tests it. Half the tree's draws are these (ours; docs/baseline.md measures
+/// what they buy: little at the default tree).
 pub fn auv_step_towards<R: Rng>(
     rng: &mut R,
     l: &Limits,
@@ -123,11 +133,9 @@ pub fn auv_step_towards<R: Rng>(
         return Err(Reject::Floor);
     }
     let target = [x, y, rng.gen_range(lo..=hi)];
-    // P' = P + A_p V + B_p (V' − A_v V)/B_v per axis, solved for V'
-    let v1: [f64; 3] = std::array::from_fn(|i| {
-        let free = p0[i] + model.pv[i] * v0[i] - model.pu[i] * model.vv[i] * v0[i] / model.vu[i];
-        (target[i] - free) * model.vu[i] / model.pu[i]
-    });
+    // the map of `free` and `gain`, solved for V'
+    let v1: [f64; 3] =
+        std::array::from_fn(|i| (target[i] - free(model, p0, v0, i)) * model.vu[i] / model.pu[i]);
     if v1.iter().any(|c| !c.is_finite()) {
         return Err(Reject::Speed); // Euler: no input moves the next waypoint
     }

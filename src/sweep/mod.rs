@@ -190,12 +190,12 @@ pub fn run(
             why: format!("cannot start it afresh: {e}"),
         })?;
     }
-    let done: Vec<usize> = match table::read(&path)? {
+    let done: std::collections::HashSet<usize> = match table::read(&path)? {
         Some((h, records)) if h == header => records
             .iter()
             .filter_map(|r| r.get(0).and_then(|v| v.parse().ok()))
             .collect(),
-        _ => Vec::new(),
+        _ => Default::default(),
     };
     let mine: Vec<&Run> = runs
         .iter()
@@ -203,7 +203,7 @@ pub fn run(
         .collect();
     let todo: Vec<&&Run> = mine.iter().filter(|r| !done.contains(&r.index)).collect();
     let appender = Mutex::new(table::Appender::open(&path, &header)?);
-    let base = base_of(study)?;
+    let base = base_of(study);
     let outcome = Mutex::new(Outcome {
         table: path.clone(),
         total: runs.len(),
@@ -266,7 +266,7 @@ pub fn run(
 
 /// The study's base: its name (the study file's stem) and where its scenario's relative
 /// paths resolve.
-fn base_of(study: &Study) -> Result<Base, SweepError> {
+fn base_of(study: &Study) -> Base {
     let name = study
         .path
         .file_stem()
@@ -275,11 +275,11 @@ fn base_of(study: &Study) -> Result<Base, SweepError> {
         Some(p) => p.parent().unwrap_or(Path::new(".")).to_path_buf(),
         None => study.path.parent().unwrap_or(Path::new(".")).to_path_buf(),
     };
-    Ok(Base {
+    Base {
         name,
         scenario: Scenario::default(),
         dir,
-    })
+    }
 }
 
 /// One run: its scenario resolved (a bad override fails the run, not the sweep), planned,
