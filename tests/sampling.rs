@@ -338,6 +338,10 @@ fn a_sampled_plan_is_drawn_viewed_and_exported_like_any_plan() {
         figures.len() >= 2 * shoal::figures::FIGURES.len(),
         "{figures:?}"
     );
+    // the path panels name the sampled paths, not the MPC's steps
+    let svg = std::fs::read_to_string(dir.path().join("figures/final-top.svg")).unwrap();
+    assert!(svg.contains("Sampled paths (rrt-like), top view"));
+    assert!(!svg.contains("Step 3, P5"));
     let csv = dir.path().join("positions.csv");
     let (rows, _) = shoal::positions::write_csv(&plan, &csv).unwrap();
     assert_eq!(rows, 3 * (s.horizon.steps + 1));

@@ -66,13 +66,13 @@ impl<'a> Map<'a> {
         let (view, plot) = fit(data, extent);
         let contour_step = contour_step(scene.floor);
         let (title, mut entries) = match kind {
-            Kind::Floor => ("Seafloor", Vec::new()),
-            Kind::Paths(Stage::Step1) => ("Step 1 paths (P2), top view", paths_legend(scene)),
-            Kind::Paths(Stage::Final) => {
-                ("Final paths (Step 3, P5), top view", paths_legend(scene))
-            }
+            Kind::Floor => ("Seafloor".to_string(), Vec::new()),
+            Kind::Paths(s) => (
+                format!("{}, top view", scene.paths_name(s)),
+                paths_legend(scene),
+            ),
             Kind::Links => (
-                "Step 2 links over Step 1 positions, top view",
+                format!("{}, top view", scene.links_name()),
                 links_legend(scene),
             ),
         };
@@ -85,7 +85,7 @@ impl<'a> Map<'a> {
             ));
         }
         let width = MARGIN * 2 + Y_AREA + plot.0 + BAR;
-        let frame = Frame::new(scene.title(title), entries, width);
+        let frame = Frame::new(scene.title(&title), entries, width);
         Map {
             scene,
             kind,

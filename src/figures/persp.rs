@@ -39,16 +39,13 @@ impl<'a> Persp<'a> {
             if scene.n > 1 {
                 entries.push(Entry::new("A2A link (P4)", Swatch::Link(style::A2A)));
             }
-            "Step 2 links over Step 1 positions, 3D"
+            format!("{}, 3D", scene.links_name())
         } else {
             entries.push(Entry::new("start", Swatch::Dot(BLACK)));
             entries.push(Entry::new("end", Swatch::Square(BLACK)));
-            match stage {
-                Stage::Step1 => "Step 1 paths (P2), 3D",
-                Stage::Final => "Final paths (Step 3, P5), 3D",
-            }
+            format!("{}, 3D", scene.paths_name(stage))
         };
-        let frame = Frame::new(scene.title(title), entries, WIDTH);
+        let frame = Frame::new(scene.title(&title), entries, WIDTH);
         Persp {
             scene,
             stage,

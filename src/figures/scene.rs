@@ -109,6 +109,25 @@ impl<'a> Scene<'a> {
         format!("{what} — {}", self.label)
     }
 
+    /// What a panel of stage `s` shows ("Final paths (Step 3, P5)"), or, in a sampling
+    /// planner's plan, whose stages are both its sampled paths, "Sampled paths (rrt-like)".
+    pub fn paths_name(&self, s: Stage) -> String {
+        match (self.plan.method.as_str(), s) {
+            (plan::METHOD_MPC, Stage::Step1) => "Step 1 paths (P2)".into(),
+            (plan::METHOD_MPC, Stage::Final) => "Final paths (Step 3, P5)".into(),
+            (method, _) => format!("Sampled paths ({method})"),
+        }
+    }
+
+    /// What the links panel shows: Step 2's links over Step 1's positions, or a sampling
+    /// planner's chain over its paths.
+    pub fn links_name(&self) -> String {
+        match self.plan.method.as_str() {
+            plan::METHOD_MPC => "Step 2 links over Step 1 positions".into(),
+            method => format!("Chain links over the sampled paths ({method})"),
+        }
+    }
+
     pub fn stage(&self, w: usize, s: Stage) -> &'a plan::Stage {
         match s {
             Stage::Step1 => &self.plan.windows[w].step1,
