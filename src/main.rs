@@ -235,6 +235,24 @@ enum SweepCommand {
         /// The sweep's output directory.
         dir: PathBuf,
     },
+    /// Plot a sweep's table: each measure against a swept key, the median over the seeds as a
+    /// line and their spread as bands (quartiles, min–max), one line per value of the other
+    /// swept keys; OUT/sweep-KEY.png and .svg per key (see docs/sweep.md).
+    Plot {
+        /// The table (runs.csv) or the sweep's directory.
+        table: PathBuf,
+        /// Output directory (default: the table's).
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// The swept key on x (default: every swept key but seed, one figure each).
+        #[arg(long, value_name = "KEY")]
+        x: Option<String>,
+        /// The measures, one panel each (default: wall_s, p2_objective, explored_km2,
+        /// mean_height_m, chain_fraction, passed_fraction and, when flown, sim_chain_end_m and
+        /// sim_dead_reckoning_end_m).
+        #[arg(long, value_name = "METRIC", num_args = 1..)]
+        y: Vec<String>,
+    },
 }
 
 #[derive(Subcommand)]
@@ -458,7 +476,21 @@ fn run(cli: Cli) -> Result<ExitCode> {
             ..
         } => {
             let (table, rows) = shoal::sweep::collect(&dir)?;
-            println!("wrote {} ({rows} runs)", table.display());
+            println!(
+                "wrote {} ({rows} runs) and {}",
+                table.display(),
+                shoal::sweep::parquet_path(&dir).display()
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Sweep {
+            command: Some(SweepCommand::Plot { table, out, x, y }),
+            ..
+        } => {
+            let files = shoal::figures::write_sweep(&table, out.as_deref(), x.as_deref(), &y)?;
+            for f in &files {
+                println!("wrote {}", f.display());
+            }
             Ok(ExitCode::SUCCESS)
         }
         Command::Sweep {
@@ -1140,7 +1172,10 @@ fn sweep(
         o.wall_s,
         o.runs_s,
         o.runs_s / o.wall_s.max(1e-9),
-        o.table.display()
+        match &o.parquet {
+            Some(p) => format!("{} and {}", o.table.display(), p.display()),
+            None => o.table.display().to_string(),
+        }
     );
     Ok(ExitCode::SUCCESS)
 }

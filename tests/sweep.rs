@@ -4,6 +4,9 @@
 mod common;
 use common::shoal;
 
+use parquet::basic::{LogicalType, Repetition, Type as Physical};
+use parquet::file::reader::{FileReader, SerializedFileReader};
+use parquet::record::Field;
 use shoal::sweep::{self, Options, Shard, Study};
 use std::path::Path;
 
@@ -30,6 +33,135 @@ fn rows_without_times(path: &Path) -> Vec<Vec<String>> {
             keep.iter().map(|&i| rec[i].to_string()).collect()
         })
         .collect()
+}
+
+/// A Parquet column: its name, physical and logical types and repetition.
+type ParquetColumn = (String, Physical, Option<LogicalType>, Repetition);
+
+/// The Parquet table beside CSV table `csv`, checked to hold the CSV's columns in order and its
+/// values (a null where the CSV has an empty cell or NaN): its columns and rows.
+fn parquet_matches_csv(csv: &Path) -> (Vec<ParquetColumn>, Vec<Vec<Field>>) {
+    let file = std::fs::File::open(csv.with_extension("parquet")).unwrap();
+    let reader = SerializedFileReader::new(file).unwrap();
+    let meta = reader.metadata().file_metadata();
+    let columns: Vec<ParquetColumn> = meta
+        .schema_descr()
+        .columns()
+        .iter()
+        .map(|c| {
+            let t = c.self_type();
+            (
+                c.name().to_string(),
+                c.physical_type(),
+                c.logical_type_ref().cloned(),
+                t.get_basic_info().repetition(),
+            )
+        })
+        .collect();
+    let kv = meta.key_value_metadata().cloned().unwrap_or_default();
+    assert!(kv.iter().any(|k| k.key == "shoal.version"), "{kv:?}");
+    let rows: Vec<Vec<Field>> = reader
+        .get_row_iter(None)
+        .unwrap()
+        .map(|r| {
+            r.unwrap()
+                .get_column_iter()
+                .map(|(_, f)| f.clone())
+                .collect()
+        })
+        .collect();
+    let mut r = csv::Reader::from_path(csv).unwrap();
+    let header = r.headers().unwrap().clone();
+    assert_eq!(
+        columns.iter().map(|c| c.0.as_str()).collect::<Vec<_>>(),
+        header.iter().collect::<Vec<_>>()
+    );
+    let recs: Vec<csv::StringRecord> = r.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), recs.len());
+    for (row, rec) in rows.iter().zip(&recs) {
+        for ((field, cell), col) in row.iter().zip(rec.iter()).zip(&header) {
+            let same = match field {
+                Field::Null => cell.is_empty() || cell == "NaN",
+                Field::Long(i) => cell.parse::<i64>() == Ok(*i),
+                Field::Double(x) => cell.parse::<f64>() == Ok(*x),
+                Field::Str(s) => s == cell,
+                Field::Bool(b) => cell == b.to_string(),
+                _ => false,
+            };
+            assert!(same, "column {col}: Parquet {field:?}, CSV \"{cell}\"");
+        }
+    }
+    (columns, rows)
+}
+
+/// The Parquet type of `name` among `columns`: physical, whether a UTF8 string, optional.
+fn parquet_type(columns: &[ParquetColumn], name: &str) -> (Physical, bool, bool) {
+    let c = columns.iter().find(|c| c.0 == name).unwrap();
+    (
+        c.1,
+        c.2 == Some(LogicalType::String),
+        c.3 == Repetition::OPTIONAL,
+    )
+}
+
+#[test]
+fn the_table_is_also_written_as_typed_parquet() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = study_in(
+        dir.path(),
+        "[set]\n\"horizon.steps\" = 6\n[axes]\n\"team.auvs\" = [0, 1]\n\
+         \"auv.max_speed\" = [1.5, 2]\n",
+    );
+    let out = dir.path().join("out");
+    let o = sweep::run(
+        &study,
+        &Options {
+            out: out.clone(),
+            shard: None,
+            resume: false,
+        },
+        &|_| {},
+    )
+    .unwrap();
+    assert_eq!(o.parquet, Some(sweep::parquet_path(&out)));
+    let (columns, rows) = parquet_matches_csv(&sweep::table_path(&out));
+    assert_eq!(rows.len(), 4);
+    let (int, real, text) = (
+        (Physical::INT64, false, true),
+        (Physical::DOUBLE, false, true),
+        (Physical::BYTE_ARRAY, true, true),
+    );
+    for (name, want) in [
+        ("run", int),
+        ("team.auvs", int),
+        ("auv.max_speed", real),
+        ("scenario", text),
+        ("auvs", int),
+        ("seed", int),
+        ("status", text),
+        ("error", text),
+        ("wall_s", real),
+        ("explored_km2", real),
+        ("out_of_band", int),
+        ("margin_c1_5_m", real),
+        ("samples_drawn", int),
+    ] {
+        assert_eq!(parquet_type(&columns, name), want, "{name}");
+    }
+    // a run that failed: its error a string, its measures nulls
+    let col = |name: &str| columns.iter().position(|c| c.0 == name).unwrap();
+    let failed = &rows[0];
+    assert_eq!(failed[col("status")], Field::Str("failed".into()));
+    assert!(matches!(&failed[col("error")], Field::Str(e) if e.contains("team.auvs")));
+    assert_eq!(failed[col("explored_km2")], Field::Null);
+    assert_eq!(failed[col("p2_objective")], Field::Null);
+    assert_eq!(failed[col("auv.max_speed")], Field::Double(1.5));
+    // a run that passed: no error (a null), its measures numbers
+    let passed = &rows[2];
+    assert_eq!(passed[col("status")], Field::Str("passed".into()));
+    assert_eq!(passed[col("error")], Field::Null);
+    assert!(matches!(passed[col("explored_km2")], Field::Double(x) if x > 0.0));
+    assert_eq!(passed[col("team.auvs")], Field::Long(1));
 }
 
 #[test]
@@ -78,6 +210,17 @@ fn shards_collected_are_the_local_sweep() {
     assert_eq!(&header[0], "run");
     assert_eq!(&header[1], "team.auvs");
     assert_eq!(header.iter().filter(|h| *h == "seed").count(), 1);
+    // collect writes the typed copy too, its axis typed from its column as the study would
+    let (local_cols, _) = parquet_matches_csv(&sweep::table_path(&local));
+    let (collected_cols, rows) = parquet_matches_csv(&table);
+    assert_eq!(rows.len(), 4);
+    assert_eq!(local_cols, collected_cols);
+    assert_eq!(
+        parquet_type(&collected_cols, "team.auvs"),
+        (Physical::INT64, false, true)
+    );
+    // a shard's table stays CSV only
+    assert!(!sharded.join("shard-0-of-3.parquet").exists());
 }
 
 #[test]
@@ -204,6 +347,7 @@ fn cli_sweep_and_collect() {
     let (code, stdout, _) = common::run(shoal().args(["sweep", "collect", out.to_str().unwrap()]));
     assert_eq!(code, 0);
     assert!(stdout.contains("runs.csv (4 runs)"), "{stdout}");
+    assert!(stdout.contains("runs.parquet"), "{stdout}");
     // the shard from Slurm's environment
     let (code, stdout, _) = common::run(
         shoal()
@@ -252,4 +396,167 @@ fn a_simulated_study_records_each_plans_localization() {
     assert!(num("sim_tracking_rms_m") < 5.0);
     assert!(num("sim_chain_end_m") < num("sim_dead_reckoning_end_m"));
     assert!(num("sim_all_links_end_m").is_finite());
+    // typed: the failed run's counts of the flight are nulls, not "NaN"
+    let (columns, rows) = parquet_matches_csv(&sweep::table_path(&out));
+    let at = |name: &str| columns.iter().position(|c| c.0 == name).unwrap();
+    assert_eq!(
+        parquet_type(&columns, "sim_below_floor"),
+        (Physical::INT64, false, true)
+    );
+    assert_eq!(rows[0][at("sim_below_floor")], Field::Null);
+    assert_eq!(rows[1][at("sim_below_floor")], Field::Long(0));
+    assert_eq!(rows[0][at("sim_status")], Field::Str("no plan".into()));
+}
+
+/// The texts of an SVG figure.
+fn svg_texts(path: &Path) -> Vec<String> {
+    let svg = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .map(|n| n.text().unwrap_or("").trim().to_string())
+        .collect()
+}
+
+#[test]
+fn cli_sweep_plot_draws_each_measure_against_each_swept_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.toml");
+    // 3 seeds × 3 team sizes; team.auvs = 0 makes no plan
+    std::fs::write(
+        &study,
+        "[set]\n\"horizon.steps\" = 6\n[axes]\nseed = \"1..3\"\n\"team.auvs\" = [0, 1, 2]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let (code, _, stderr) = common::run(shoal().args([
+        "sweep",
+        study.to_str().unwrap(),
+        "-q",
+        "-o",
+        out.to_str().unwrap(),
+    ]));
+    assert_eq!(code, 0, "{stderr}");
+    let (code, stdout, stderr) =
+        common::run(shoal().args(["sweep", "plot", out.to_str().unwrap()]));
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("sweep-team.auvs.svg"), "{stdout}");
+    assert!(out.join("sweep-team.auvs.png").exists());
+    let texts = svg_texts(&out.join("sweep-team.auvs.svg"));
+    // one panel per usual measure the table has (no simulation: no sim_* panel)
+    let titles: Vec<&String> = texts
+        .iter()
+        .filter(|t| {
+            [
+                "wall_s:",
+                "p2_objective:",
+                "explored_km2:",
+                "mean_height_m:",
+                "chain_fraction:",
+                "passed_fraction:",
+            ]
+            .iter()
+            .any(|m| t.starts_with(m))
+        })
+        .collect();
+    assert_eq!(titles.len(), 6, "{texts:?}");
+    assert!(!texts.iter().any(|t| t.starts_with("sim_")), "{texts:?}");
+    // one line: no other swept key but the seed
+    assert!(!texts.iter().any(|t| t.contains(" = ")), "{texts:?}");
+    let caption = texts
+        .iter()
+        .find(|t| t.starts_with("9 runs in runs.csv"))
+        .unwrap();
+    assert!(caption.contains("3 made no plan"), "{caption}");
+    assert!(texts.iter().any(|t| t.contains("quartiles")), "{texts:?}");
+
+    // against the seed, chosen measures: one line per team size
+    let figs = dir.path().join("figs");
+    let (code, _, stderr) = common::run(shoal().args([
+        "sweep",
+        "plot",
+        sweep::table_path(&out).to_str().unwrap(),
+        "-o",
+        figs.to_str().unwrap(),
+        "--x",
+        "seed",
+        "--y",
+        "explored_km2",
+        "energy",
+    ]));
+    assert_eq!(code, 0, "{stderr}");
+    let texts = svg_texts(&figs.join("sweep-seed.svg"));
+    let lines = texts
+        .iter()
+        .filter(|t| t.starts_with("team.auvs = ") && t.ends_with("(3 runs)"))
+        .count();
+    assert_eq!(lines, 3, "{texts:?}");
+    assert!(texts.iter().any(|t| t.starts_with("energy")), "{texts:?}");
+    assert!(!texts.iter().any(|t| t.starts_with("wall_s")), "{texts:?}");
+
+    // an unknown measure or key is named, with the table and what is allowed
+    let (code, _, stderr) =
+        common::run(shoal().args(["sweep", "plot", out.to_str().unwrap(), "--y", "explored_m2"]));
+    assert_eq!(code, 2);
+    for want in [
+        "runs.csv",
+        "\"explored_m2\"",
+        "allowed: ",
+        "explored_km2",
+        "passed_fraction",
+    ] {
+        assert!(stderr.contains(want), "{want}: {stderr}");
+    }
+    let (code, _, stderr) =
+        common::run(shoal().args(["sweep", "plot", out.to_str().unwrap(), "--x", "team"]));
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--x \"team\"") && stderr.contains("allowed: team.auvs, seed"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn a_table_swept_over_seeds_only_is_plotted_against_the_seed() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = study_in(
+        dir.path(),
+        "[set]\n\"horizon.steps\" = 6\n\"team.auvs\" = 1\n[axes]\nseed = \"1..2\"\n",
+    );
+    let out = dir.path().join("out");
+    let opts = Options {
+        out: out.clone(),
+        shard: None,
+        resume: false,
+    };
+    sweep::run(&study, &opts, &|_| {}).unwrap();
+    let files = shoal::figures::write_sweep(&out, None, None, &[]).unwrap();
+    assert_eq!(
+        files,
+        [out.join("sweep-seed.png"), out.join("sweep-seed.svg")]
+    );
+    let texts = svg_texts(&files[1]);
+    assert!(texts.iter().any(|t| t == "seed"), "the x axis: {texts:?}");
+    assert!(texts
+        .iter()
+        .any(|t| t.contains("median of the runs at each seed")));
+    // a study without axes has nothing to plot against
+    let one = dir.path().join("one");
+    let study = study_in(
+        dir.path(),
+        "[set]\n\"horizon.steps\" = 6\n\"team.auvs\" = 1\n",
+    );
+    let opts = Options {
+        out: one.clone(),
+        shard: None,
+        resume: false,
+    };
+    sweep::run(&study, &opts, &|_| {}).unwrap();
+    let e = shoal::figures::write_sweep(&one, None, None, &[])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("runs.csv") && e.contains("nothing to plot against"),
+        "{e}"
+    );
 }

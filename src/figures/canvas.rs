@@ -98,9 +98,22 @@ impl Images {
 
 /// Draw `fig` as `dir/NAME.png` and `dir/NAME.svg`; returns both paths.
 pub(crate) fn write<F: Figure>(fig: &F, dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
+    write_as(fig, dir, fig.name())
+}
+
+/// Draw `fig` as `dir/STEM.png` and `dir/STEM.svg` (a stem made at run time, e.g. from a
+/// swept key); returns both paths.
+pub(crate) fn write_as<F: Figure>(
+    fig: &F,
+    dir: &Path,
+    stem: &str,
+) -> Result<Vec<PathBuf>, FigureError> {
     super::style::register_font();
-    let name = fig.name();
-    let failed = |why: String| FigureError::Draw { figure: name, why };
+    let name = stem;
+    let failed = |why: String| FigureError::Draw {
+        figure: fig.name(),
+        why,
+    };
     let (w, h) = fig.size();
 
     let mut rgb = vec![255u8; w as usize * h as usize * 3];

@@ -1,7 +1,8 @@
 //! Static figures of a plan, as PNG and SVG, drawn with `plotters`: the paper's Fig. 4 panels
 //! (seafloor, Step 1 paths, Step 2 links, final paths; each path panel as a 3D perspective and a
 //! top view), time series of the links, speeds, heading rates and depths against their limits,
-//! and the metrics table.
+//! and the metrics table; and the figures of a comparison ([`write_compare`]) and of a sweep's
+//! table ([`write_sweep`]).
 //!
 //! Every figure covers every window of the plan (paths concatenated across windows, window
 //! starts marked in the time series), names each vehicle the same way with one colour per
@@ -23,6 +24,7 @@ mod series;
 mod sim;
 mod sim_tracks;
 mod style;
+mod sweep;
 mod table;
 mod text;
 
@@ -35,6 +37,7 @@ use thiserror::Error;
 pub use compare::{write_compare, COMPARE_FIGURE};
 pub use sim::{write_sim, write_sim_with, SIM_FIGURES};
 pub use style::{vehicle_colour, vehicle_name};
+pub use sweep::{figure_stem as sweep_figure_stem, write_sweep};
 
 /// The figures [`write_all`] writes, by file stem; each as `STEM.png` and `STEM.svg`.
 pub const FIGURES: [&str; 11] = [
@@ -80,6 +83,10 @@ pub enum FigureError {
     /// what is wrong.
     #[error("cannot plot the comparison: {0}")]
     Compare(String),
+    /// A sweep's table that cannot be plotted as asked (`shoal sweep plot`); holds the table
+    /// file and what is wrong, naming the column and the columns allowed.
+    #[error("{0}")]
+    Sweep(String),
 }
 
 /// One figure written, for progress reports.

@@ -3,6 +3,7 @@
 //! whether it touched the floor, and the team's position error at the mission's end under dead
 //! reckoning, the planned chain and every link (factor graph).
 
+use super::columns::Kind;
 use crate::plan::Plan;
 use crate::seafloor::Seafloor;
 use crate::sim::policy::Policy;
@@ -16,6 +17,16 @@ pub const COLUMNS: [&str; 6] = [
     "sim_dead_reckoning_end_m",
     "sim_chain_end_m",
     "sim_all_links_end_m",
+];
+
+/// The type of each of [`COLUMNS`].
+pub const KINDS: [Kind; 6] = [
+    Kind::Text,
+    Kind::Real,
+    Kind::Int,
+    Kind::Real,
+    Kind::Real,
+    Kind::Real,
 ];
 
 /// The simulation's fields of a run: its plan flown over its floor, or why not ("no plan",

@@ -1,9 +1,12 @@
 //! `shoal sweep`: a study of many runs (seeds, team sizes, any scenario key, floors) described
 //! by one file ([`Study`]), run on every core or in shards (one per task of a Slurm job array),
 //! each run a pure function of its resolved scenario that appends one row to a table
-//! ([`table`]); a run that fails records its error and the sweep goes on (docs/sweep.md).
+//! ([`table`]); a run that fails records its error and the sweep goes on (docs/sweep.md). The
+//! final table is written twice: `runs.csv` and its typed copy `runs.parquet`.
 
+mod columns;
 mod flown;
+mod parquet_file;
 pub mod study;
 pub mod table;
 
@@ -143,6 +146,8 @@ pub struct Done {
 pub struct Outcome {
     /// The table written.
     pub table: PathBuf,
+    /// Its typed copy (`runs.parquet`), written when the sweep has no shards.
+    pub parquet: Option<PathBuf>,
     /// Runs of the study (all shards).
     pub total: usize,
     /// Runs this process was to make (its shard).
@@ -164,6 +169,33 @@ pub struct Outcome {
 /// The table of a sweep without shards.
 pub fn table_path(dir: &Path) -> PathBuf {
     dir.join("runs.csv")
+}
+
+/// Its typed copy, as Parquet (a shard's table has none).
+pub fn parquet_path(dir: &Path) -> PathBuf {
+    parquet_file::beside(&table_path(dir))
+}
+
+/// Write the typed copy of the table `csv` (its `header` and sorted `records`) beside it;
+/// an axis's type is its TOML values' when `study` is given, else read from its column.
+fn write_parquet(
+    csv: &Path,
+    header: &csv::StringRecord,
+    records: &[csv::StringRecord],
+    study: Option<&Study>,
+) -> Result<PathBuf, SweepError> {
+    let axis = |key: &str| {
+        study
+            .and_then(|s| s.axes.iter().find(|a| a.key == key))
+            .map(|a| columns::axis_kind(&a.values))
+    };
+    let kinds = columns::kinds(header, records, axis);
+    let path = parquet_file::beside(csv);
+    let name = study
+        .and_then(|s| s.path.file_name())
+        .map(|n| n.to_string_lossy());
+    parquet_file::write(&path, header, &kinds, records, name.as_deref())?;
+    Ok(path)
 }
 
 /// Run `study` (its shard, if any) on every core of the current rayon pool; `progress` hears of
@@ -258,8 +290,11 @@ pub fn run(
     }
     drop(appender);
     let (_, records) = table::read(&path)?.unwrap_or_default();
-    table::write_sorted(&path, &header, records)?;
+    let records = table::write_sorted(&path, &header, records)?;
     let mut o = outcome.into_inner().unwrap_or_else(|p| p.into_inner());
+    if opts.shard.is_none() {
+        o.parquet = Some(write_parquet(&path, &header, &records, Some(study))?);
+    }
     o.wall_s = clock.elapsed().as_secs_f64();
     Ok(o)
 }
@@ -306,8 +341,9 @@ fn run_one(study: &Study, base: &Base, run: &Run) -> Planned {
     }
 }
 
-/// Merge the shard tables of `dir` (`shard-I-of-N.csv`) into `dir/runs.csv`, sorted by run.
-/// Returns the table and its number of rows.
+/// Merge the shard tables of `dir` (`shard-I-of-N.csv`) into `dir/runs.csv`, sorted by run,
+/// and its typed copy `dir/runs.parquet` (each axis's type read from its column, the study
+/// not being at hand). Returns the CSV table and its number of rows.
 pub fn collect(dir: &Path) -> Result<(PathBuf, usize), SweepError> {
     let mut shards: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|e| SweepError::Table {
@@ -341,6 +377,7 @@ pub fn collect(dir: &Path) -> Result<(PathBuf, usize), SweepError> {
     }
     let header = header.ok_or_else(|| SweepError::NothingToCollect(dir.to_path_buf()))?;
     let path = table_path(dir);
-    let rows = table::write_sorted(&path, &header, records)?;
-    Ok((path, rows))
+    let records = table::write_sorted(&path, &header, records)?;
+    write_parquet(&path, &header, &records, None)?;
+    Ok((path, records.len()))
 }

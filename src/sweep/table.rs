@@ -1,7 +1,8 @@
 //! A sweep's table (CSV): one row per run, `run` (its index), the swept keys, then the columns
 //! of `shoal compare`'s rows ([`crate::compare::Row`]: status, error, times, metrics, the
 //! check's margins). Rows are appended as runs finish (each flushed, so an interrupted sweep
-//! keeps what it finished) and sorted by run when the sweep ends.
+//! keeps what it finished) and sorted by run when the sweep ends, when a typed copy is written
+//! beside it as Parquet (`runs.parquet`, [`super::parquet_path`]).
 
 use super::SweepError;
 use crate::compare::Row;
@@ -139,12 +140,12 @@ fn line(rec: &StringRecord) -> Vec<u8> {
 }
 
 /// Write `records` under `header` to `path`, sorted by run and one per run (the last kept),
-/// atomically.
+/// atomically; returns the records written.
 pub fn write_sorted(
     path: &Path,
     header: &StringRecord,
     mut records: Vec<StringRecord>,
-) -> Result<usize, SweepError> {
+) -> Result<Vec<StringRecord>, SweepError> {
     let run = |r: &StringRecord| {
         r.get(0)
             .and_then(|v| v.parse::<usize>().ok())
@@ -164,5 +165,5 @@ pub fn write_sorted(
         path: path.to_path_buf(),
         why: e.to_string(),
     })?;
-    Ok(kept.len())
+    Ok(kept)
 }
