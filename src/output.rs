@@ -72,7 +72,14 @@ pub fn read_plan(path: &Path) -> Result<Plan, OutputError> {
         path: path.to_path_buf(),
         source,
     })?;
-    let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| OutputError::Parse {
+    parse_plan(&text, path)
+}
+
+/// A plan from the text of a plan file (`path` names it in errors), refusing other formats
+/// with the same messages as [`read_plan`]; for plans held in memory (the Python package's
+/// `Plan.from_json`).
+pub fn parse_plan(text: &str, path: &Path) -> Result<Plan, OutputError> {
+    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| OutputError::Parse {
         path: path.to_path_buf(),
         why: e.to_string(),
     })?;
@@ -260,4 +267,32 @@ pub fn write_grid(
         }
     }
     Ok(notes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_plan_names_the_source_and_refuses_other_formats() {
+        let name = Path::new("in memory.json");
+        for (text, want) in [
+            ("{", "in memory.json is not a shoal plan: EOF while parsing"),
+            (
+                "{}",
+                "in memory.json is not a shoal plan: no \"format\" field",
+            ),
+            (
+                "{\"format\": \"shoal-plan/1\"}",
+                "format \"shoal-plan/1\" is not \"shoal-plan/4\"",
+            ),
+            (
+                "{\"format\": \"shoal-plan/4\"}",
+                "in memory.json is not a shoal plan: missing field",
+            ),
+        ] {
+            let e = parse_plan(text, name).unwrap_err().to_string();
+            assert!(e.contains(want), "{text}: {e}");
+        }
+    }
 }
