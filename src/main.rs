@@ -209,7 +209,8 @@ enum Command {
         /// Output directory.
         #[arg(short, long, default_value = "sweep")]
         out: PathBuf,
-        /// Make only every N-th run from the I-th (0-based), into OUT/shard-I-of-N.csv.
+        /// Make only the I-th (0-based) of N parts of the runs (dealt in a fixed pseudo-random
+        /// order, sizes within one), into OUT/shard-I-of-N.csv.
         /// Default: SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT, or JOB_COMPLETION_INDEX/
         /// SHOAL_SHARDS, when set; otherwise every run.
         #[arg(long, value_name = "I/N")]

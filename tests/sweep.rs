@@ -560,3 +560,71 @@ fn a_table_swept_over_seeds_only_is_plotted_against_the_seed() {
         "{e}"
     );
 }
+
+#[test]
+fn collect_refuses_a_missing_shard_and_shards_of_another_split() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = study_in(dir.path(), STUDY);
+    let out = dir.path().join("sharded");
+    let shard = |i, n| {
+        let opts = Options {
+            out: out.clone(),
+            shard: Some(Shard::new(i, n).unwrap()),
+            resume: false,
+        };
+        sweep::run(&study, &opts, &|_| {}).unwrap();
+    };
+    // task 1 of 3 never ran: collecting would silently lose its runs
+    shard(0, 3);
+    shard(2, 3);
+    let e = sweep::collect(&out).unwrap_err().to_string();
+    assert!(
+        e.contains("1 of 3 shard tables missing (shard-1-of-3.csv)"),
+        "{e}"
+    );
+    // an earlier sweep's split left in the directory
+    shard(1, 3);
+    shard(0, 2);
+    let e = sweep::collect(&out).unwrap_err().to_string();
+    assert!(e.contains("shard tables of 2 splits (of-2, of-3)"), "{e}");
+    std::fs::remove_file(out.join("shard-0-of-2.csv")).unwrap();
+    assert_eq!(sweep::collect(&out).unwrap().1, 4);
+}
+
+#[test]
+fn shards_partition_the_runs_evenly_whatever_the_axes() {
+    // every run in exactly one shard, shard sizes within one of each other; totals 0 and 1
+    // and more shards than runs included
+    for total in [0, 1, 2, 7, 12, 200, 1001] {
+        for count in [1, 2, 3, 4, 8, 13] {
+            let mut seen = vec![0; total];
+            let sizes: Vec<usize> = (0..count)
+                .map(|i| {
+                    let runs = Shard::new(i, count).unwrap().runs(total);
+                    assert!(runs.windows(2).all(|w| w[0] < w[1]), "ascending");
+                    runs.iter().for_each(|&r| seen[r] += 1);
+                    runs.len()
+                })
+                .collect();
+            assert!(
+                seen.iter().all(|&n| n == 1),
+                "{total} runs in {count} shards"
+            );
+            let (lo, hi) = (sizes.iter().min(), sizes.iter().max());
+            assert!(hi.unwrap() - lo.unwrap() <= 1, "{sizes:?}");
+        }
+    }
+    // regression: dealt in their own order (every N-th run), the 200-run benchmark study
+    // (seed × team.auvs = [1, 3, 5, 8]) gave one of two shards every N = 3 and N = 8 run.
+    // Each shard now has about half of each team size.
+    for i in 0..2 {
+        let runs = Shard::new(i, 2).unwrap().runs(200);
+        for n in 0..4 {
+            let of_n = runs.iter().filter(|&&r| r % 4 == n).count();
+            assert!(
+                (15..=35).contains(&of_n),
+                "shard {i}: {of_n} runs of team size #{n}"
+            );
+        }
+    }
+}

@@ -54,7 +54,8 @@ pub enum SweepError {
     NothingToCollect(PathBuf),
 }
 
-/// Which runs this process makes: every N-th from the I-th (0-based).
+/// Which runs this process makes: the I-th (0-based) of N parts of the study's runs, dealt
+/// in a fixed pseudo-random order ([`Shard::runs`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shard {
     /// I, 0 ≤ I < N.
@@ -111,6 +112,24 @@ impl Shard {
             ),
             _ => Ok(None),
         }
+    }
+
+    /// The runs (indices, ascending) of this shard of a study of `total` runs: the runs put in
+    /// a fixed pseudo-random order (by a hash of their index, the same on every machine), then
+    /// dealt out in turn, so the shards' sizes differ by at most one. Dealing the runs in
+    /// their own order (every N-th) would give a shard the same value of a fast axis in every
+    /// run when N divides its length: with `team.auvs = [1, 3, 5, 8]` and two shards, one
+    /// would get every N = 3 and N = 8, nearly three times the other's work.
+    pub fn runs(&self, total: usize) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..total).collect();
+        order.sort_by_key(|&i| splitmix64(i as u64));
+        let mut mine: Vec<usize> = order
+            .into_iter()
+            .skip(self.index)
+            .step_by(self.count)
+            .collect();
+        mine.sort_unstable();
+        mine
     }
 
     /// The table file of this shard in `dir`.
@@ -229,10 +248,10 @@ pub fn run(
             .collect(),
         _ => Default::default(),
     };
-    let mine: Vec<&Run> = runs
-        .iter()
-        .filter(|r| opts.shard.map_or(true, |s| r.index % s.count == s.index))
-        .collect();
+    let mine: Vec<&Run> = match opts.shard {
+        Some(s) => s.runs(runs.len()).into_iter().map(|i| &runs[i]).collect(),
+        None => runs.iter().collect(),
+    };
     let todo: Vec<&&Run> = mine.iter().filter(|r| !done.contains(&r.index)).collect();
     let appender = Mutex::new(table::Appender::open(&path, &header)?);
     let base = base_of(study);
@@ -341,6 +360,62 @@ fn run_one(study: &Study, base: &Base, run: &Run) -> Planned {
     }
 }
 
+/// SplitMix64's finaliser: a bijective hash of 64-bit words (Steele, Lea and Flood 2014),
+/// fixed here so that every task of an array orders the runs alike.
+fn splitmix64(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// The shard tables of one sweep are `shard-I-of-N.csv` for one N and every I < N: tables of
+/// another split (an earlier sweep's) or a missing shard (a task that never ran) would make a
+/// table that is not the study's.
+fn check_shards(dir: &Path, shards: &[PathBuf]) -> Result<(), SweepError> {
+    let split = |p: &PathBuf| -> Option<(usize, usize)> {
+        let name = p.file_stem()?.to_str()?.strip_prefix("shard-")?;
+        let (i, n) = name.split_once("-of-")?;
+        Some((i.parse().ok()?, n.parse().ok()?))
+    };
+    let mut counts = std::collections::BTreeMap::<usize, Vec<usize>>::new();
+    for p in shards {
+        let (i, n) = split(p).ok_or_else(|| SweepError::Table {
+            path: p.clone(),
+            why: "not a shard table's name (shard-I-of-N.csv)".into(),
+        })?;
+        counts.entry(n).or_default().push(i);
+    }
+    if counts.len() > 1 {
+        let splits: Vec<String> = counts.keys().map(|n| format!("of-{n}")).collect();
+        return Err(SweepError::Table {
+            path: dir.to_path_buf(),
+            why: format!(
+                "shard tables of {} splits ({}): remove those of earlier sweeps",
+                counts.len(),
+                splits.join(", ")
+            ),
+        });
+    }
+    if let Some((n, found)) = counts.into_iter().next() {
+        let missing: Vec<String> = (0..n)
+            .filter(|i| !found.contains(i))
+            .map(|i| format!("shard-{i}-of-{n}.csv"))
+            .collect();
+        if !missing.is_empty() {
+            return Err(SweepError::Table {
+                path: dir.to_path_buf(),
+                why: format!(
+                    "{} of {n} shard tables missing ({}): did every task of the array run?",
+                    missing.len(),
+                    missing.join(", ")
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Merge the shard tables of `dir` (`shard-I-of-N.csv`) into `dir/runs.csv`, sorted by run,
 /// and its typed copy `dir/runs.parquet` (each axis's type read from its column, the study
 /// not being at hand). Returns the CSV table and its number of rows.
@@ -359,6 +434,7 @@ pub fn collect(dir: &Path) -> Result<(PathBuf, usize), SweepError> {
         })
         .collect();
     shards.sort();
+    check_shards(dir, &shards)?;
     let mut header = None;
     let mut records = Vec::new();
     for p in &shards {
