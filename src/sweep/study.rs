@@ -156,14 +156,46 @@ impl Study {
             .collect()
     }
 
-    /// The overrides of `run`: the study's `set`, then its axes' values.
+    /// The overrides of `run`: the study's `set`, then its axes' values. A floor file given
+    /// by a relative path in the study is relative to the study file (as its `scenario` is),
+    /// not to the base scenario's directory.
     pub fn overrides(&self, run: &Run) -> Vec<String> {
         let axes = self
             .axes
             .iter()
             .zip(&run.values)
             .map(|(a, v)| format!("{}={v}", a.key));
-        self.set.iter().cloned().chain(axes).collect()
+        self.set
+            .iter()
+            .cloned()
+            .chain(axes)
+            .map(|o| self.anchored(o))
+            .collect()
+    }
+
+    /// Override `key=value`, a relative `seafloor.file` made absolute from the study's
+    /// directory.
+    fn anchored(&self, over: String) -> String {
+        let Some((key, value)) = over.split_once('=') else {
+            return over;
+        };
+        if key.trim() != "seafloor.file" {
+            return over;
+        }
+        let Ok(Value::String(file)) = value.trim().parse::<Value>() else {
+            return over;
+        };
+        let file = Path::new(file.value());
+        if file.is_absolute() {
+            return over;
+        }
+        // absolute, so that a base scenario's loader does not take it as relative to its own
+        // directory
+        let dir = self.path.parent().unwrap_or(Path::new(""));
+        match std::path::absolute(dir.join(file)) {
+            Ok(p) => format!("{key}={}", Value::from(p.to_string_lossy().into_owned())),
+            Err(_) => over,
+        }
     }
 }
 
@@ -225,8 +257,15 @@ mod tests {
     fn no_axis_is_one_run_and_an_axis_of_strings_keeps_its_quotes() {
         let s = parse("").unwrap();
         assert_eq!(s.runs().len(), 1);
-        let s = parse("[axes]\n\"seafloor.file\" = [\"a.tif\", \"b.asc\"]\n").unwrap();
-        assert_eq!(s.overrides(&s.runs()[1]), ["seafloor.file=\"b.asc\""]);
+        let s = parse("[axes]\n\"seafloor.file\" = [\"a.tif\", \"/b.asc\"]\n").unwrap();
+        // relative to the study file's directory, as its scenario is; absolute as given
+        let cwd = std::env::current_dir().unwrap();
+        let a = format!(
+            "seafloor.file={}",
+            Value::from(cwd.join("dir/a.tif").to_str().unwrap())
+        );
+        assert_eq!(s.overrides(&s.runs()[0]), [a]);
+        assert_eq!(s.overrides(&s.runs()[1]), ["seafloor.file=\"/b.asc\""]);
     }
 
     #[test]
