@@ -59,6 +59,7 @@ pub(super) fn describe(name: &str) -> (String, String) {
         "sim_dead_reckoning_end_m" => Some(("end error, dead reckoning (flown)", "m")),
         "sim_all_links_end_m" => Some(("end error, all links (flown)", "m")),
         "sim_tracking_rms_m" => Some(("worst tracking RMS (flown)", "m")),
+        "sim_below_floor" => Some(("flight samples under the floor", "samples")),
         _ => None,
     };
     let (what, unit) = known.unwrap_or_else(|| ("", unit_of(name)));

@@ -23,6 +23,18 @@ impl SweepFigure<'_> {
             .map(|s| points(self.table, &self.x, s, metric))
             .collect();
         let (title, unit) = describe(metric);
+        // a title wider than the panel would run off the figure: the measure's words alone,
+        // else its column name
+        let width = i64::from(area.dim_in_pixel().0) - 28;
+        let fits = |t: &str| {
+            area.estimate_text_size(t, &text(LABEL))
+                .map_or(true, |(w, _)| i64::from(w) <= width)
+        };
+        let title = match title.split_once(": ") {
+            Some(_) if fits(&title) => title,
+            Some((_, what)) if fits(what) => what.to_string(),
+            _ => metric.to_string(),
+        };
         let (x_lo, x_hi) = self.x_range();
         let (y_lo, y_hi) = y_range(lines.iter().flatten(), metric);
         let mut chart: Chart2d<DB> = ChartBuilder::on(area)
