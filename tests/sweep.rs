@@ -20,6 +20,16 @@ fn study_in(dir: &Path, text: &str) -> Study {
     Study::load(&path).unwrap()
 }
 
+/// Run every run of `study` on this machine into `out` (no shard, not resumed).
+fn run_local(study: &Study, out: &Path) -> sweep::Outcome {
+    let opts = Options {
+        out: out.to_path_buf(),
+        shard: None,
+        resume: false,
+    };
+    sweep::run(study, &opts, &|_| {}).unwrap()
+}
+
 /// The table's rows without the columns that are times (which differ run to run).
 fn rows_without_times(path: &Path) -> Vec<Vec<String>> {
     let mut r = csv::Reader::from_path(path).unwrap();
@@ -113,16 +123,7 @@ fn the_table_is_also_written_as_typed_parquet() {
          \"auv.max_speed\" = [1.5, 2]\n",
     );
     let out = dir.path().join("out");
-    let o = sweep::run(
-        &study,
-        &Options {
-            out: out.clone(),
-            shard: None,
-            resume: false,
-        },
-        &|_| {},
-    )
-    .unwrap();
+    let o = run_local(&study, &out);
     assert_eq!(o.parquet, Some(sweep::parquet_path(&out)));
     let (columns, rows) = parquet_matches_csv(&sweep::table_path(&out));
     assert_eq!(rows.len(), 4);
@@ -169,16 +170,7 @@ fn shards_collected_are_the_local_sweep() {
     let dir = tempfile::tempdir().unwrap();
     let study = study_in(dir.path(), STUDY);
     let local = dir.path().join("local");
-    let o = sweep::run(
-        &study,
-        &Options {
-            out: local.clone(),
-            shard: None,
-            resume: false,
-        },
-        &|_| {},
-    )
-    .unwrap();
+    let o = run_local(&study, &local);
     assert_eq!((o.total, o.mine, o.passed), (4, 4, 4));
     let sharded = dir.path().join("sharded");
     for i in 0..3 {
@@ -228,12 +220,7 @@ fn a_resumed_sweep_makes_only_the_runs_its_table_lacks() {
     let dir = tempfile::tempdir().unwrap();
     let study = study_in(dir.path(), STUDY);
     let out = dir.path().join("out");
-    let opts = Options {
-        out: out.clone(),
-        shard: None,
-        resume: false,
-    };
-    sweep::run(&study, &opts, &|_| {}).unwrap();
+    run_local(&study, &out);
     // an interrupted sweep: two rows, the second cut short
     let table = sweep::table_path(&out);
     let text = std::fs::read_to_string(&table).unwrap();
@@ -244,8 +231,9 @@ fn a_resumed_sweep_makes_only_the_runs_its_table_lacks() {
     let o = sweep::run(
         &study,
         &Options {
+            out: out.clone(),
+            shard: None,
             resume: true,
-            ..opts
         },
         &|d| seen.lock().unwrap().push(d.index),
     )
@@ -271,16 +259,7 @@ fn a_run_that_fails_records_why_and_the_sweep_goes_on() {
         "[set]\n\"horizon.steps\" = 6\n[axes]\n\"team.auvs\" = [0, 1]\n",
     );
     let out = dir.path().join("out");
-    let o = sweep::run(
-        &study,
-        &Options {
-            out: out.clone(),
-            shard: None,
-            resume: false,
-        },
-        &|_| {},
-    )
-    .unwrap();
+    let o = run_local(&study, &out);
     assert_eq!((o.failed, o.passed), (1, 1));
     let mut r = csv::Reader::from_path(sweep::table_path(&out)).unwrap();
     let header = r.headers().unwrap().clone();
@@ -378,12 +357,7 @@ fn a_simulated_study_records_each_plans_localization() {
         "simulate = true\n[set]\n\"horizon.steps\" = 6\n[axes]\n\"team.auvs\" = [0, 2]\n",
     );
     let out = dir.path().join("out");
-    let opts = Options {
-        out: out.clone(),
-        shard: None,
-        resume: false,
-    };
-    sweep::run(&study, &opts, &|_| {}).unwrap();
+    run_local(&study, &out);
     let mut r = csv::Reader::from_path(sweep::table_path(&out)).unwrap();
     let header = r.headers().unwrap().clone();
     let col = |name: &str| header.iter().position(|h| h == name).unwrap();
@@ -524,12 +498,7 @@ fn a_table_swept_over_seeds_only_is_plotted_against_the_seed() {
         "[set]\n\"horizon.steps\" = 6\n\"team.auvs\" = 1\n[axes]\nseed = \"1..2\"\n",
     );
     let out = dir.path().join("out");
-    let opts = Options {
-        out: out.clone(),
-        shard: None,
-        resume: false,
-    };
-    sweep::run(&study, &opts, &|_| {}).unwrap();
+    run_local(&study, &out);
     let files = shoal::figures::write_sweep(&out, None, None, &[]).unwrap();
     assert_eq!(
         files,
@@ -546,12 +515,7 @@ fn a_table_swept_over_seeds_only_is_plotted_against_the_seed() {
         dir.path(),
         "[set]\n\"horizon.steps\" = 6\n\"team.auvs\" = 1\n",
     );
-    let opts = Options {
-        out: one.clone(),
-        shard: None,
-        resume: false,
-    };
-    sweep::run(&study, &opts, &|_| {}).unwrap();
+    run_local(&study, &one);
     let e = shoal::figures::write_sweep(&one, None, None, &[])
         .unwrap_err()
         .to_string();

@@ -19,7 +19,7 @@ See docs/python.md in the repository for the whole API.
 
 from __future__ import annotations
 
-from . import _shoal
+from . import _errors, _shoal
 from ._check import CheckReport, Family
 from ._errors import (
     CheckFailed,
@@ -45,16 +45,7 @@ __all__ = [
     "CheckReport",
     "Family",
     "default_scenario_toml",
-    "ShoalError",
-    "ScenarioError",
-    "SeafloorError",
-    "PlanningError",
-    "InfeasibleError",
-    "SolverError",
-    "PlanFileError",
-    "SweepError",
-    "CheckFailed",
-    "ShoalWarning",
+    *_errors.__all__,
 ]
 
 __version__ = _shoal.version()
