@@ -38,6 +38,20 @@ pub(crate) fn text(size: u32) -> TextStyle<'static> {
     (FAMILY, size).into_font().color(&BLACK)
 }
 
+/// Colours of the series of a summary figure (a method, a line of a sweep), in order: the
+/// first six of the vehicles' palette but an orange a shade darker, for thin lines on white.
+pub(crate) const SERIES: [RGBColor; 6] = [
+    RGBColor(0x1f, 0x77, 0xb4),
+    RGBColor(0xf0, 0x7a, 0x0a),
+    RGBColor(0x2c, 0xa0, 0x2c),
+    RGBColor(0xd6, 0x27, 0x28),
+    RGBColor(0x94, 0x67, 0xbd),
+    RGBColor(0x8c, 0x56, 0x4b),
+];
+
+/// The neutral grey of a summary figure's legend keys (marker kinds, bands).
+pub(crate) const KEY_GREY: RGBColor = RGBColor(0x5a, 0x5a, 0x5a);
+
 /// Colours of AUV 0, 1, …: dark and saturated enough to read over the muted floor, none of them
 /// black (the USV), light blue (A2U links) or yellow (A2A links). Beyond 20 AUVs they come
 /// again in shades (`vehicle_colour`).

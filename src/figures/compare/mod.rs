@@ -58,8 +58,8 @@ const PAPER_RRT_S: f64 = 300.0;
 const PAPER_LABEL: &str = "paper: RRT-like > 300 s (N = 1)";
 
 /// Method colours: MPC, RRT-like, then any other method in order of appearance.
-const MPC: RGBColor = RGBColor(0x1f, 0x77, 0xb4);
-const RRT_LIKE: RGBColor = RGBColor(0xf0, 0x7a, 0x0a);
+const MPC: RGBColor = super::style::SERIES[0];
+const RRT_LIKE: RGBColor = super::style::SERIES[1];
 const FURTHER: [RGBColor; 6] = [
     RGBColor(0x2c, 0xa0, 0x2c),
     RGBColor(0x94, 0x67, 0xbd),
@@ -69,7 +69,7 @@ const FURTHER: [RGBColor; 6] = [
     RGBColor(0x12, 0x9e, 0xad),
 ];
 /// The legend's neutral colour for marker kinds.
-const KEY: RGBColor = RGBColor(0x5a, 0x5a, 0x5a);
+const KEY: RGBColor = super::style::KEY_GREY;
 /// Slot and group separators.
 const SLOT_LINE: RGBColor = RGBColor(235, 235, 235);
 const GROUP_LINE: RGBColor = RGBColor(150, 150, 150);

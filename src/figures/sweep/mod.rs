@@ -79,16 +79,9 @@ const PANEL_W: u32 = 620;
 const PANEL_H: u32 = 440;
 const CAPTION_LINE: u32 = 30;
 /// One colour per line; a single line takes the first.
-const LINES: [RGBColor; select::MAX_SERIES] = [
-    RGBColor(0x1f, 0x77, 0xb4),
-    RGBColor(0xf0, 0x7a, 0x0a),
-    RGBColor(0x2c, 0xa0, 0x2c),
-    RGBColor(0xd6, 0x27, 0x28),
-    RGBColor(0x94, 0x67, 0xbd),
-    RGBColor(0x8c, 0x56, 0x4b),
-];
+const LINES: [RGBColor; select::MAX_SERIES] = super::style::SERIES;
 /// The legend's neutral colour.
-const KEY: RGBColor = RGBColor(0x5a, 0x5a, 0x5a);
+const KEY: RGBColor = super::style::KEY_GREY;
 /// The bands' opacities: min–max, quartiles.
 const EXTREMES: f64 = 0.12;
 const QUARTILES: f64 = 0.30;
