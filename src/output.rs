@@ -36,6 +36,18 @@ pub enum OutputError {
         /// What is wrong with it.
         why: String,
     },
+    /// An output folder's manifest cannot be trusted: damaged, not a regular file, or naming a
+    /// file outside the folder or one the command does not write. It is never obeyed.
+    #[error(
+        "{path} cannot be trusted: {why}; shoal removes only files it wrote inside its output \
+         folder. Delete the manifest if the folder holds no output of shoal's you want replaced"
+    )]
+    Manifest {
+        /// The manifest's path.
+        path: PathBuf,
+        /// What is wrong with it.
+        why: String,
+    },
     /// The output directory given exists and is a file.
     #[error("the output {path} exists and is not a directory; give the directory to write the plan, CSVs and figures in")]
     NotADirectory {
@@ -66,8 +78,12 @@ pub fn write_plan(plan: &Plan, path: &Path) -> Result<(), OutputError> {
     write_atomic(path, &json)
 }
 
-/// Read a plan file, refusing other formats with a clear message.
+/// Read a plan file, refusing other formats with a clear message. An output set that a killed
+/// `shoal plan` left half moved into the file's folder is completed first
+/// ([`crate::output_set::settle`]), so the plan read is the one its folder's other files
+/// belong to.
 pub fn read_plan(path: &Path) -> Result<Plan, OutputError> {
+    crate::output_set::settle(crate::atomic_file::folder_of(path));
     let text = std::fs::read_to_string(path).map_err(|source| OutputError::Read {
         path: path.to_path_buf(),
         source,
@@ -201,11 +217,11 @@ pub fn write_floor(
     write_grid(floor, &crs, citation.as_deref(), out)
 }
 
-/// Writes a grid by the file name's extension, atomically: a GeoTIFF with its CRS (and
-/// citation), or an ESRI ASCII grid with a `.prj` sidecar when shoal knows the CRS's WKT
-/// ([`crate::seafloor::wkt_of`]: WGS 84 and its UTM zones). A `.prj` left beside the output by an
-/// earlier grid is removed when the new grid has none, so it cannot mislabel it. Returns what
-/// the user should hear about the sidecar.
+/// Writes a grid by the file name's extension, as one output set with its sidecar
+/// ([`crate::output_set`]): a GeoTIFF with its CRS (and citation), or an ESRI ASCII grid with a
+/// `.prj` sidecar when shoal knows the CRS's WKT ([`crate::seafloor::wkt_of`]: WGS 84 and its UTM
+/// zones). A `.prj` left beside the output by an earlier grid is removed when the new grid has
+/// none, so it cannot mislabel it. Returns what the user should hear about the sidecar.
 pub fn write_grid(
     floor: &crate::seafloor::Seafloor,
     crs: &crate::seafloor::Crs,
@@ -217,23 +233,41 @@ pub fn write_grid(
         path: path.display().to_string(),
         source,
     };
+    let from_output = |e: OutputError| match e {
+        OutputError::Write { path, source } => io(&path, source),
+        other => io(out, std::io::Error::other(other.to_string())),
+    };
+    let format = GridFormat::from_path(out);
+    // shoal writes .asc and .tif only; GDAL converts those to anything else
+    if !matches!(format, Some(GridFormat::GeoTiff | GridFormat::EsriAscii)) {
+        return Err(SeafloorError::Format {
+            path: out.display().to_string(),
+        });
+    }
+    let name = out
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or_else(|| io(out, std::io::Error::other("not a file name in UTF-8")))?;
+    let set = crate::output_set::OutputSet::begin_kind(
+        crate::atomic_file::folder_of(out),
+        crate::output_set::Kind::Grid(name.to_string()),
+    )
+    .map_err(from_output)?;
+    let staged = set.dir().join(name);
+    let prj = out.with_extension("prj");
     let mut notes = Vec::new();
-    match GridFormat::from_path(out) {
-        Some(GridFormat::GeoTiff) => floor.write_geotiff(out, crs, citation)?,
-        Some(GridFormat::EsriAscii) => {
-            floor.write_esri_ascii(out)?;
-            let prj = out.with_extension("prj");
+    match format {
+        Some(GridFormat::GeoTiff) => floor.write_geotiff(&staged, crs, citation)?,
+        _ => {
+            floor.write_esri_ascii(&staged)?;
             match crate::seafloor::wkt_of(crs) {
                 Some(wkt) => {
-                    write_atomic(&prj, wkt.as_bytes()).map_err(|e| match e {
-                        OutputError::Write { path, source } => io(&path, source),
-                        other => io(&prj, std::io::Error::other(other.to_string())),
-                    })?;
+                    write_atomic(&staged.with_extension("prj"), wkt.as_bytes())
+                        .map_err(from_output)?;
                     notes.push(format!("wrote {} ({crs})", prj.display()));
                 }
                 None => {
                     if prj.is_file() {
-                        std::fs::remove_file(&prj).map_err(|e| io(&prj, e))?;
                         notes.push(format!(
                             "removed {}, left by an earlier grid: it does not describe this one",
                             prj.display()
@@ -259,13 +293,8 @@ pub fn write_grid(
                 }
             }
         }
-        // shoal writes .asc and .tif only; GDAL converts those to anything else
-        Some(GridFormat::Gdal) | None => {
-            return Err(SeafloorError::Format {
-                path: out.display().to_string(),
-            })
-        }
     }
+    set.commit(None).map_err(from_output)?;
     Ok(notes)
 }
 

@@ -224,7 +224,10 @@ pub(crate) enum GridFile {
 }
 
 impl GridFile {
+    /// Open a grid file; a grid that a killed `shoal seafloor export` left half moved into its
+    /// folder is completed first ([`crate::output_set::settle`]).
     pub fn open(path: &Path) -> Result<(GridFile, GridFormat), SeafloorError> {
+        crate::output_set::settle(crate::atomic_file::folder_of(path));
         let format = GridFormat::from_path(path).ok_or_else(|| SeafloorError::Format {
             path: path.display().to_string(),
         })?;
