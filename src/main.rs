@@ -7,6 +7,7 @@ use shoal::scenario::{self, Scenario};
 use shoal::Progress;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 #[derive(Parser)]
 #[command(
@@ -879,15 +880,31 @@ fn plan(
     how: How,
 ) -> Result<ExitCode> {
     // the output set is staged inside `out` and moved into place after its check; `-o` naming
-    // a file is refused before any planning
+    // a file, or a folder whose manifest cannot be trusted, is refused before any planning
     let set = shoal::output_set::OutputSet::begin(out)?;
-    let staging = set.dir().to_path_buf();
-    ctrlc::set_handler(move || {
-        let _ = std::fs::remove_dir_all(&staging);
-        eprintln!("interrupted: nothing was written (the earlier outputs, if any, are unchanged)");
-        std::process::exit(130);
-    })
-    .context("installing the Ctrl-C handler")?;
+    let stop = interrupt_plan(set.dir().to_path_buf(), s.windows)?;
+    match plan_into(s, source, overrides, scenario_path, out, how, set, stop) {
+        // a write into the staging directory that Ctrl-C's handler is removing: let the
+        // handler end the process with its own message
+        Err(_) if stop.gate.interrupted() => loop {
+            std::thread::park();
+        },
+        done => done,
+    }
+}
+
+/// [`plan`] once its output set has begun.
+#[allow(clippy::too_many_arguments)]
+fn plan_into(
+    s: &Scenario,
+    source: String,
+    overrides: Vec<String>,
+    scenario_path: Option<&Path>,
+    out: &Path,
+    how: How,
+    set: shoal::output_set::OutputSet,
+    stop: &PlanStop,
+) -> Result<ExitCode> {
     let (floor, floor_source) = shoal::mission::scenario_floor(s, base_dir(scenario_path))?;
     floor_source
         .warnings
@@ -913,9 +930,16 @@ fn plan(
         }
         (None, Method::Mpc) => shoal::Planner::new(s, &floor)
             .provenance(provenance)
-            .on_progress(|event| report.event(event))
+            .on_progress(|event| {
+                if let Progress::Step3 { .. } = event {
+                    stop.windows_done.fetch_add(1, Ordering::SeqCst);
+                }
+                report.event(event)
+            })
+            .stop_when(&stop.requested)
             .run(),
     };
+    stop.planning_over();
     report.finish();
     let plan = planned?;
     let tables = !how.quiet && !how.json;
@@ -932,7 +956,14 @@ fn plan(
     // the check verifies what was written: the file read back, not the plan in memory
     let written = shoal::output::read_plan(&plan_path)?;
     let check = shoal::check::check_plan(&written, &floor);
-    let files = set.commit(check.passed())?;
+    if !stop.gate.enter() {
+        // Ctrl-C came first: its handler is ending the process
+        loop {
+            std::thread::park();
+        }
+    }
+    let files = set.commit(Some(check.passed()))?;
+    let cut_short = written.windows.len() < s.windows;
     for w in &written.warnings {
         eprintln!("warning: {w}");
     }
@@ -968,11 +999,84 @@ fn plan(
     } else if !check.passed() {
         eprintln!("check: VIOLATED (run `shoal check` on the plan for the table)");
     }
+    if cut_short {
+        eprintln!(
+            "interrupted: wrote the {} of {} windows planned before Ctrl-C to {} (the plan records \
+             windows = {} and says so in its warnings)",
+            written.windows.len(),
+            s.windows,
+            out.display(),
+            written.windows.len()
+        );
+        return Ok(ExitCode::from(130));
+    }
     Ok(if check.passed() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
     })
+}
+
+/// What `shoal plan` and its Ctrl-C handler share.
+struct PlanStop {
+    /// Set by a first Ctrl-C once a window is done: stop after the window being planned.
+    requested: AtomicBool,
+    /// Windows planned so far.
+    windows_done: AtomicUsize,
+    /// Set when planning has ended (the plan is being written, checked and moved into place).
+    over: AtomicBool,
+    /// Whether the output set has begun to move into place.
+    gate: shoal::output_set::CommitGate,
+}
+
+impl PlanStop {
+    fn planning_over(&self) {
+        self.over.store(true, Ordering::SeqCst);
+    }
+}
+
+/// Install `shoal plan`'s Ctrl-C handler. A first Ctrl-C while a window of a multi-window plan
+/// is being planned, with a window already done, lets that window end and writes the windows
+/// done (a whole, checked plan of fewer windows, exit 130). Otherwise, or at a second Ctrl-C,
+/// the run ends at once and writes nothing: the staging directory is removed and the earlier
+/// outputs stay as they were. While the set moves into place, Ctrl-C waits for it.
+fn interrupt_plan(staging: PathBuf, windows: usize) -> Result<&'static PlanStop> {
+    let stop: &'static PlanStop = Box::leak(Box::new(PlanStop {
+        requested: AtomicBool::new(false),
+        windows_done: AtomicUsize::new(0),
+        over: AtomicBool::new(false),
+        gate: shoal::output_set::CommitGate::new(),
+    }));
+    ctrlc::set_handler(move || {
+        let done = stop.windows_done.load(Ordering::SeqCst);
+        let first = !stop.requested.swap(true, Ordering::SeqCst);
+        if first && done >= 1 && done < windows && !stop.over.load(Ordering::SeqCst) {
+            match done + 1 == windows {
+                true => eprintln!(
+                    "interrupt: {done} of {windows} windows are planned and the last is under \
+                     way; the whole plan is written when it ends (Ctrl-C again to stop at once, \
+                     writing nothing)"
+                ),
+                false => eprintln!(
+                    "interrupt: {done} of {windows} windows are planned; stopping when window {} \
+                     ends and writing the windows planned by then (Ctrl-C again to stop at \
+                     once, writing nothing)",
+                    done + 1
+                ),
+            }
+            return;
+        }
+        if stop.gate.interrupt() {
+            let _ = std::fs::remove_dir_all(&staging);
+            eprintln!(
+                "interrupted: nothing was written (the earlier outputs, if any, are unchanged)"
+            );
+            std::process::exit(130);
+        }
+        eprintln!("interrupt: the outputs are being moved into place; that ends first");
+    })
+    .context("installing the Ctrl-C handler")?;
+    Ok(stop)
 }
 
 /// The `--json` summary of a plan written in `out`.

@@ -25,6 +25,7 @@ use crate::team::{LinkSet, TeamProblem};
 use crate::trajectory::{Start, Trajectory};
 use crate::vehicle::{AuvModel, Damping, UsvModel};
 use crate::{step1, step2, step3};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// What the planner reports as it goes (the CLI prints a line per step on stderr).
@@ -100,6 +101,7 @@ pub struct Planner<'a> {
     floor: &'a Seafloor,
     provenance: Provenance,
     progress: Option<Listener<'a>>,
+    stop: Option<&'a AtomicBool>,
 }
 
 impl<'a> Planner<'a> {
@@ -111,6 +113,7 @@ impl<'a> Planner<'a> {
             floor,
             provenance: Provenance::in_memory(scenario),
             progress: None,
+            stop: None,
         }
     }
 
@@ -123,6 +126,15 @@ impl<'a> Planner<'a> {
     /// Hear of every SCP iteration and every step as it ends.
     pub fn on_progress(mut self, f: impl FnMut(Progress) + 'a) -> Planner<'a> {
         self.progress = Some(Box::new(f));
+        self
+    }
+
+    /// Stop after the window being planned when `stop` is set (by a Ctrl-C handler): the plan
+    /// then holds the windows done so far, records `windows` as their number, and says in its
+    /// warnings that it was cut short. A stop before the first window ends is not seen until it
+    /// does.
+    pub fn stop_when(mut self, stop: &'a AtomicBool) -> Planner<'a> {
+        self.stop = Some(stop);
         self
     }
 
@@ -139,6 +151,7 @@ impl<'a> Planner<'a> {
             self.floor,
             &self.provenance,
             &mut report as &mut dyn FnMut(Progress),
+            self.stop,
         )
     }
 }
@@ -294,6 +307,7 @@ fn run(
     floor: &Seafloor,
     provenance: &Provenance,
     progress: &mut dyn FnMut(Progress),
+    stop: Option<&AtomicBool>,
 ) -> Result<Plan, PlanError> {
     let setup = Setup::of(s, floor)?; // line 5
     let (auv, usv, keep_out) = (setup.model.auv, setup.model.usv, &setup.keep_out);
@@ -397,6 +411,33 @@ fn run(
             metrics,
             sampling: None,
         });
+        if w + 1 < s.windows && stop.is_some_and(|f| f.load(Ordering::SeqCst)) {
+            return Ok(cut_short(setup, s, floor, provenance, windows));
+        }
     }
     Ok(setup.plan(s, floor, provenance, METHOD_MPC, windows))
+}
+
+/// The plan of the first `windows` of a mission stopped by the user: the scenario it records
+/// asks for those windows only (so the plan is whole and checkable as it is), and a warning
+/// says how many were asked for.
+fn cut_short(
+    setup: Setup,
+    s: &Scenario,
+    floor: &Seafloor,
+    provenance: &Provenance,
+    windows: Vec<Window>,
+) -> Plan {
+    let mut done = s.clone();
+    done.windows = windows.len();
+    let mut plan = setup.plan(&done, floor, provenance, METHOD_MPC, windows);
+    plan.warnings.insert(
+        0,
+        format!(
+            "interrupted: {} of the {} windows asked for were planned; the plan holds those \
+             and records windows = {}",
+            done.windows, s.windows, done.windows
+        ),
+    );
+    plan
 }

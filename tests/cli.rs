@@ -306,6 +306,61 @@ fn regression_an_interrupted_plan_leaves_the_earlier_outputs_untouched() {
     );
 }
 
+/// Regression: Ctrl-C in a multi-window `shoal plan` dropped the windows already planned. A
+/// first Ctrl-C once a window is done now lets the window under way end and writes the windows
+/// planned by then: a whole plan, recorded as such, that passes its check (exit 130).
+#[cfg(unix)]
+#[test]
+fn regression_ctrl_c_in_a_multi_window_plan_dropped_the_finished_windows() {
+    use std::io::BufRead;
+    let dir = fresh_dir("interrupted-windows");
+    let mut child = shoal()
+        .args(["plan", "--no-plot", "-o", dir.to_str().unwrap()])
+        .args([
+            "--set",
+            "team.auvs=2",
+            "--set",
+            "horizon.steps=6",
+            "--set",
+            "windows=8",
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // wait until the first window is planned
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    while !line.contains("window 0: step 3") {
+        line.clear();
+        assert!(
+            err.read_line(&mut line).unwrap() > 0,
+            "shoal plan ended early"
+        );
+    }
+    let pid = child.id() as libc::pid_t;
+    // SAFETY: sending a signal to our own child process
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGINT) }, 0);
+    let status = child.wait().unwrap();
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
+    assert_eq!(status.code(), Some(130), "{rest}");
+    assert!(rest.contains("interrupt: "), "{rest}");
+    assert!(rest.contains("windows planned before Ctrl-C"), "{rest}");
+    let plan = shoal::output::read_plan(&dir.join("plan.json")).unwrap();
+    let done = plan.windows.len();
+    assert!((1..8).contains(&done), "{done} windows");
+    assert_eq!(plan.scenario.windows, done);
+    assert!(
+        plan.warnings[0].starts_with("interrupted:"),
+        "{:?}",
+        plan.warnings
+    );
+    let (code, out, err) =
+        common::run(shoal().args(["check", dir.join("plan.json").to_str().unwrap()]));
+    assert_eq!(code, 0, "{out}{err}");
+}
+
 /// Issue 13: `--json` prints one JSON summary on stdout for scripts (nothing else there), and
 /// `--quiet` prints nothing on stdout and no progress.
 #[test]
