@@ -462,7 +462,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             waypoints,
             no_plot,
         } => {
-            let seeds = seed_list(&seeds).map_err(|e| anyhow::anyhow!("--seeds {seeds}: {e}"))?;
+            let seeds = shoal::compare::parse_seeds(&seeds)?;
             let study = shoal::compare::Study {
                 bases: compare_bases(&scenarios, &set)?,
                 methods: methods.iter().map(|m| m.study()).collect(),
@@ -1008,26 +1008,6 @@ fn json_summary(
     .expect("a summary serialises")
 }
 
-/// "1-10" or "1,4,7" as a list of seeds.
-fn seed_list(text: &str) -> Result<Vec<u64>, String> {
-    let num = |t: &str| {
-        t.trim()
-            .parse::<u64>()
-            .map_err(|_| format!("\"{t}\" is not a whole number"))
-    };
-    let seeds = match text.split_once('-') {
-        Some((a, b)) => {
-            let (a, b) = (num(a)?, num(b)?);
-            if a > b {
-                return Err(format!("the range runs backwards ({a} > {b})"));
-            }
-            (a..=b).collect()
-        }
-        None => text.split(',').map(num).collect::<Result<Vec<_>, _>>()?,
-    };
-    Ok(seeds)
-}
-
 /// The study's bases: each scenario file (or "default") with `set` applied.
 fn compare_bases(scenarios: &[String], set: &[String]) -> Result<Vec<shoal::compare::Base>> {
     let names: Vec<String> = match scenarios.is_empty() {
@@ -1051,19 +1031,46 @@ fn compare_bases(scenarios: &[String], set: &[String]) -> Result<Vec<shoal::comp
         .collect()
 }
 
-/// `shoal compare`: run the study, print a line per run and the summary, write the outputs.
+/// `shoal compare`: run the study with a progress bar on a terminal (a line per run otherwise),
+/// write the outputs and print the summary. Ctrl-C stops it after the run under way (a second
+/// Ctrl-C at once) and writes the finished runs, marked incomplete; exit code 130.
 fn compare(
     study: &shoal::compare::Study,
     out: &Path,
     keep_plans: bool,
     figure: bool,
 ) -> Result<ExitCode> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::{Arc, Mutex};
+    study.validate()?;
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     let total = study.runs();
-    let mut kept = Vec::new();
-    let rows = shoal::compare::run(study, &mut |i, planned| {
+    let bar = runs_bar(total, false);
+    let cancel = Arc::new(AtomicBool::new(false));
+    let finished: Arc<Mutex<Vec<shoal::compare::Row>>> = Arc::default();
+    {
+        let (cancel, finished, out) = (cancel.clone(), finished.clone(), out.to_path_buf());
+        ctrlc::set_handler(move || {
+            if !cancel.swap(true, Ordering::SeqCst) {
+                eprintln!(
+                    "stopping after the run under way (Ctrl-C again to stop at once); the \
+                     finished runs will be written"
+                );
+                return;
+            }
+            let rows = finished.lock().map(|r| r.clone()).unwrap_or_default();
+            match shoal::compare::write_tables(&out, &rows, total) {
+                Ok((csv, _, _)) => eprintln!("{}", interrupted(rows.len(), total, &csv)),
+                Err(e) => eprintln!("interrupted: {e}"),
+            }
+            std::process::exit(130);
+        })
+        .context("installing the Ctrl-C handler")?;
+    }
+    let mut plan_error = None;
+    let rows = shoal::compare::run_until(study, &cancel, &mut |i, planned| {
         let r = &planned.row;
-        eprintln!(
+        let line = format!(
             "[{}/{total}] {} {} N = {} seed {}: {} in {:.2} s{}",
             i + 1,
             r.scenario,
@@ -1077,23 +1084,32 @@ fn compare(
                 false => format!(" ({})", r.error),
             }
         );
+        match bar.is_hidden() {
+            true => eprintln!("{line}"),
+            false => bar.println(line),
+        }
+        bar.inc(1);
         if let (true, Some(plan)) = (keep_plans, &planned.plan) {
             let name = format!("{}-{}-n{}-s{}.json", r.scenario, r.method, r.auvs, r.seed);
-            kept.push((name, plan.clone()));
+            if let Err(e) = shoal::output::write_plan(plan, &out.join("plans").join(name)) {
+                plan_error.get_or_insert(e);
+            }
         }
-    })?;
-    for (name, plan) in &kept {
-        shoal::output::write_plan(plan, &out.join("plans").join(name))?;
+        if let Ok(mut f) = finished.lock() {
+            f.push(r.clone());
+        }
+    });
+    bar.finish_and_clear();
+    let rows = rows?;
+    if let Some(e) = plan_error {
+        return Err(e.into());
     }
-    let mut csv = csv::Writer::from_writer(Vec::new());
-    for r in &rows {
-        csv.serialize(r).context("writing runs.csv")?;
-    }
-    let bytes = csv.into_inner().context("writing runs.csv")?;
-    shoal::output::write_atomic(&out.join("runs.csv"), &bytes)?;
-    let table = shoal::compare::markdown(&shoal::compare::summary(&rows));
-    shoal::output::write_atomic(&out.join("summary.md"), table.as_bytes())?;
+    let (csv_path, md_path, table) = shoal::compare::write_tables(out, &rows, total)?;
     println!("{table}");
+    if rows.len() < total {
+        eprintln!("{}", interrupted(rows.len(), total, &csv_path));
+        return Ok(ExitCode::from(130));
+    }
     if figure {
         let mut methods: Vec<&str> = Vec::new();
         for r in &rows {
@@ -1106,11 +1122,36 @@ fn compare(
     }
     println!(
         "wrote {} and {}{}",
-        out.join("runs.csv").display(),
-        out.join("summary.md").display(),
+        csv_path.display(),
+        md_path.display(),
         if figure { " and compare.png/.svg" } else { "" }
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// What an interrupted comparison says it kept.
+fn interrupted(done: usize, total: usize, csv: &Path) -> String {
+    format!(
+        "interrupted after {done} of {total} runs: wrote {} with the {done} finished runs \
+         (incomplete)",
+        csv.display()
+    )
+}
+
+/// A progress bar of `total` runs on stderr with the elapsed time and the ETA, hidden when
+/// `quiet` or when stderr is not a terminal.
+fn runs_bar(total: usize, quiet: bool) -> ProgressBar {
+    let bar = match quiet {
+        true => ProgressBar::hidden(),
+        false => ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr()),
+    };
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} runs, {elapsed_precise} elapsed, ETA {eta} {msg}",
+        )
+        .expect("a valid template"),
+    );
+    bar
 }
 
 /// `shoal sweep STUDY`: run it (or its shard) with a progress bar; print the totals.
