@@ -1171,7 +1171,7 @@ fn sweep(
             .map_err(|e| anyhow::anyhow!(e))?,
     };
     let opts = shoal::sweep::Options { out, shard, resume };
-    let total = study.runs().len();
+    let total = study.total().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     let bar = match quiet {
         true => ProgressBar::hidden(),
         false => ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr()),

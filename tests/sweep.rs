@@ -592,3 +592,89 @@ fn shards_partition_the_runs_evenly_whatever_the_axes() {
         }
     }
 }
+
+/// Regression: `seed = "0..1000000000000"` made every run in memory first and aborted on the
+/// allocation. A study's size is now computed from its axes' ends and refused above
+/// `MAX_RUNS`, before anything is made.
+#[test]
+fn regression_a_huge_seed_range_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("study.toml");
+    std::fs::write(&path, "[axes]\nseed = \"0..1000000000000\"\n").unwrap();
+    let e = Study::load(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("study.toml: axes: seed (1 000 000 000 001 values) make 1 000 000 000 001 runs")
+            && e.contains("a study has at most 1 000 000 runs"),
+        "{e}"
+    );
+    assert_eq!(sweep::MAX_RUNS, 1_000_000);
+    // the CLI says so at once, exit code 2
+    let (code, _, stderr) = common::run(shoal().args(["sweep", path.to_str().unwrap()]));
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("1 000 000 000 001 runs"), "{stderr}");
+    // at the limit a study is taken, and never made into a list of runs
+    std::fs::write(&path, "[axes]\nseed = \"1..1000\"\nx = \"1..1000\"\n").unwrap();
+    let s = Study::load(&path).unwrap();
+    assert_eq!(s.total(), Ok(1_000_000));
+    assert_eq!(s.run(999_999).values, ["1000", "1000"]);
+    assert_eq!(s.run(1_000).values, ["2", "1"]);
+}
+
+/// Regression: a full 64-bit range panicked ("capacity overflow"); it has 2^64 values, more
+/// than a 64-bit count holds, and is refused saying so.
+#[test]
+fn regression_a_full_64_bit_range_is_refused_not_a_panic() {
+    let e = Study::parse(
+        "[axes]\nseed = \"-9223372036854775808..9223372036854775807\"\n",
+        Path::new("s.toml"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("18 446 744 073 709 551 616 runs (more than a 64-bit count holds)"),
+        "{e}"
+    );
+    // the ends of a range may be any 64-bit numbers; a small range near them is taken
+    let s = Study::parse(
+        "[axes]\nseed = \"9223372036854775806..9223372036854775807\"\n",
+        Path::new("s.toml"),
+    )
+    .unwrap();
+    assert_eq!(s.run(1).values, ["9223372036854775807"]);
+}
+
+/// Regression: four axes of 65 536 values each made 2^64 runs, which wrapped to 0: "0 of 0
+/// runs", exit 0. The product is now checked.
+#[test]
+fn regression_axes_whose_product_overflows_are_refused() {
+    let four = "[axes]\na = \"1..65536\"\nb = \"1..65536\"\nc = \"1..65536\"\nd = \"1..65536\"\n";
+    let e = Study::parse(four, Path::new("s.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(
+            "axes: 4 axes of 65 536 values make 18 446 744 073 709 551 616 runs (more than a \
+             64-bit count holds); a study has at most 1 000 000 runs"
+        ),
+        "{e}"
+    );
+    // past even 128 bits
+    let many: String = (0..9).map(|i| format!("a{i} = \"0..100000000000000\"\n")).collect();
+    let e = Study::parse(&format!("[axes]\n{many}"), Path::new("s.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("make more than 340 282 366"), "{e}");
+    // axes of different sizes are each named
+    let sizes: Vec<String> = (1..=501).map(|n| n.to_string()).collect();
+    let text = format!(
+        "[axes]\nseed = \"1..2000\"\n\"team.auvs\" = [{}]\n",
+        sizes.join(", ")
+    );
+    let e = Study::parse(&text, Path::new("s.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("axes: seed (2 000 values) × team.auvs (501 values) make 1 002 000 runs"),
+        "{e}"
+    );
+}

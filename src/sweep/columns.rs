@@ -6,6 +6,7 @@
 //! hand (`shoal sweep collect`) is an axis's type read from its column's text, the same way.
 
 use super::flown;
+use super::study::Values;
 use crate::compare::Row;
 use csv::StringRecord;
 use toml_edit::Value;
@@ -41,6 +42,15 @@ pub fn row_kinds() -> Vec<(String, Kind)> {
             (name.to_string(), kind)
         })
         .collect()
+}
+
+/// The type of an axis from its values: a range's are whole numbers, a list's their TOML
+/// type's.
+pub fn values_kind(values: &Values) -> Kind {
+    match values {
+        Values::Range { .. } => Kind::Int,
+        Values::List(v) => axis_kind(v),
+    }
 }
 
 /// The type of an axis from its values as TOML text.

@@ -10,7 +10,8 @@ mod parquet_file;
 pub mod study;
 pub mod table;
 
-pub use study::{Axis, Run, Study};
+pub use crate::compare::MAX_RUNS;
+pub use study::{Axis, Run, Study, Values};
 
 use crate::compare::{plan_and_check, Base, Planned};
 use crate::scenario::{self, Scenario};
@@ -206,7 +207,7 @@ fn write_parquet(
     let axis = |key: &str| {
         study
             .and_then(|s| s.axes.iter().find(|a| a.key == key))
-            .map(|a| columns::axis_kind(&a.values))
+            .map(|a| columns::values_kind(&a.values))
     };
     let kinds = columns::kinds(header, records, axis);
     let path = parquet_file::beside(csv);
@@ -225,7 +226,7 @@ pub fn run(
     progress: &(dyn Fn(&Done) + Sync),
 ) -> Result<Outcome, SweepError> {
     let clock = Instant::now();
-    let runs = study.runs();
+    let runs: Vec<Run> = study.runs().collect();
     let keys: Vec<String> = study.axes.iter().map(|a| a.key.clone()).collect();
     let mut header = table::header(&keys);
     if study.simulate {
