@@ -1154,7 +1154,10 @@ fn runs_bar(total: usize, quiet: bool) -> ProgressBar {
     bar
 }
 
-/// `shoal sweep STUDY`: run it (or its shard) with a progress bar; print the totals.
+/// `shoal sweep STUDY`: run it (or its shard) with a progress bar; print the totals. Exit
+/// code 0 when the table holds its runs and not every one failed, 1 when every run of the
+/// table failed, 130 when interrupted (Ctrl-C: the runs under way finish and keep their rows;
+/// a second Ctrl-C stops at once, every finished row already in the table).
 fn sweep(
     path: &Path,
     out: PathBuf,
@@ -1162,6 +1165,8 @@ fn sweep(
     resume: bool,
     quiet: bool,
 ) -> Result<ExitCode> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
     let study = shoal::sweep::Study::load(path)?;
     let shard = match shard {
         Some(text) => {
@@ -1171,33 +1176,89 @@ fn sweep(
             .map_err(|e| anyhow::anyhow!(e))?,
     };
     let opts = shoal::sweep::Options { out, shard, resume };
-    let total = study.total().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    let bar = match quiet {
-        true => ProgressBar::hidden(),
-        false => ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr()),
+    let total = study
+        .total()
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let mine = shard.map_or(total, |s| s.runs(total).len());
+    let table = match shard {
+        Some(s) => s.table(&opts.out),
+        None => shoal::sweep::table_path(&opts.out),
     };
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{bar:30} {pos}/{len} runs, {elapsed_precise} elapsed, ETA {eta} {msg}",
-        )
-        .expect("a valid template"),
-    );
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let (cancel, table) = (cancel.clone(), table.clone());
+        let again = format!(
+            "shoal sweep {} -o {} --resume",
+            path.display(),
+            opts.out.display()
+        );
+        ctrlc::set_handler(move || {
+            if !cancel.swap(true, Ordering::SeqCst) {
+                eprintln!(
+                    "stopping: no new run starts, the runs under way finish and keep their rows \
+                     (Ctrl-C again to stop at once)"
+                );
+                return;
+            }
+            eprintln!(
+                "interrupted: {} keeps every run that finished (each row is written as its run \
+                 ends); `{again}` makes the rest",
+                table.display()
+            );
+            std::process::exit(130);
+        })
+        .context("installing the Ctrl-C handler")?;
+    }
+    let bar = runs_bar(mine, quiet);
     let counts = std::sync::Mutex::new([0usize; 3]);
-    let outcome = shoal::sweep::run(&study, &opts, &|done| {
-        let mut c = counts.lock().unwrap_or_else(|p| p.into_inner());
-        match done.status.as_str() {
-            "passed" => c[0] += 1,
-            "violated" => c[1] += 1,
-            _ => c[2] += 1,
-        }
-        bar.set_message(format!(
-            "(passed {}, violated {}, failed {})",
-            c[0], c[1], c[2]
-        ));
-        bar.inc(1);
-    });
+    let outcome = shoal::sweep::run_until(
+        &study,
+        &opts,
+        &|done| {
+            let mut c = counts.lock().unwrap_or_else(|p| p.into_inner());
+            match done.status.as_str() {
+                "passed" => c[0] += 1,
+                "violated" => c[1] += 1,
+                _ => c[2] += 1,
+            }
+            bar.set_message(format!(
+                "(passed {}, violated {}, failed {})",
+                c[0], c[1], c[2]
+            ));
+            bar.inc(1);
+        },
+        &cancel,
+    );
     bar.finish_and_clear();
     let o = outcome?;
+    for note in &o.notes {
+        eprintln!("warning: {note}");
+    }
+    let made = o.passed + o.violated + o.failed;
+    if o.interrupted {
+        eprintln!(
+            "interrupted after {made} of {} runs: wrote {} with the {} finished runs \
+             (incomplete: {} of its {} runs; `shoal sweep {} -o {} --resume` makes the rest)",
+            o.mine - o.skipped,
+            o.table.display(),
+            o.rows,
+            o.rows,
+            o.mine,
+            path.display(),
+            opts.out.display()
+        );
+        return Ok(ExitCode::from(130));
+    }
+    if !o.complete {
+        eprintln!(
+            "error: {} holds {} of its {} runs (see the warnings above); `--resume` makes the \
+             rest",
+            o.table.display(),
+            o.rows,
+            o.mine
+        );
+        return Ok(ExitCode::from(1));
+    }
     println!(
         "{} of {} runs{}: {} passed, {} violated, {} failed{} in {:.1} s (the runs' own times sum to \
          {:.1} s: {:.2}× in parallel); wrote {}",
@@ -1219,5 +1280,13 @@ fn sweep(
             None => o.table.display().to_string(),
         }
     );
+    if o.rows > 0 && o.rows_failed == o.rows {
+        eprintln!(
+            "error: every run of {} failed (no plan), e.g. {}",
+            o.table.display(),
+            o.first_failure.as_deref().unwrap_or("?")
+        );
+        return Ok(ExitCode::from(1));
+    }
     Ok(ExitCode::SUCCESS)
 }
