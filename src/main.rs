@@ -1237,11 +1237,10 @@ fn sweep(
     let made = o.passed + o.violated + o.failed;
     if o.interrupted {
         eprintln!(
-            "interrupted after {made} of {} runs: wrote {} with the {} finished runs \
-             (incomplete: {} of its {} runs; `shoal sweep {} -o {} --resume` makes the rest)",
+            "interrupted after {made} of {} runs: wrote {} with the {} finished runs of its {} \
+             (incomplete; `shoal sweep {} -o {} --resume` makes the rest)",
             o.mine - o.skipped,
             o.table.display(),
-            o.rows,
             o.rows,
             o.mine,
             path.display(),

@@ -1293,7 +1293,7 @@ fn an_interrupted_sweep_says_what_it_kept() {
     assert!(!rows.is_empty() && rows.len() < 400, "{}", rows.len());
     assert!(
         stderr.contains(&format!(
-            "wrote {} with the {} finished runs (incomplete:",
+            "wrote {} with the {} finished runs of its 400 (incomplete; `shoal sweep",
             table.display(),
             rows.len()
         )) && stderr.contains("--resume` makes the rest"),
