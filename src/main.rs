@@ -463,7 +463,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             waypoints,
             no_plot,
         } => {
-            let seeds = seed_list(&seeds).map_err(|e| anyhow::anyhow!("--seeds {seeds}: {e}"))?;
+            let seeds = shoal::compare::parse_seeds(&seeds)?;
             let study = shoal::compare::Study {
                 bases: compare_bases(&scenarios, &set)?,
                 methods: methods.iter().map(|m| m.study()).collect(),
@@ -1112,26 +1112,6 @@ fn json_summary(
     .expect("a summary serialises")
 }
 
-/// "1-10" or "1,4,7" as a list of seeds.
-fn seed_list(text: &str) -> Result<Vec<u64>, String> {
-    let num = |t: &str| {
-        t.trim()
-            .parse::<u64>()
-            .map_err(|_| format!("\"{t}\" is not a whole number"))
-    };
-    let seeds = match text.split_once('-') {
-        Some((a, b)) => {
-            let (a, b) = (num(a)?, num(b)?);
-            if a > b {
-                return Err(format!("the range runs backwards ({a} > {b})"));
-            }
-            (a..=b).collect()
-        }
-        None => text.split(',').map(num).collect::<Result<Vec<_>, _>>()?,
-    };
-    Ok(seeds)
-}
-
 /// The study's bases: each scenario file (or "default") with `set` applied.
 fn compare_bases(scenarios: &[String], set: &[String]) -> Result<Vec<shoal::compare::Base>> {
     let names: Vec<String> = match scenarios.is_empty() {
@@ -1155,19 +1135,46 @@ fn compare_bases(scenarios: &[String], set: &[String]) -> Result<Vec<shoal::comp
         .collect()
 }
 
-/// `shoal compare`: run the study, print a line per run and the summary, write the outputs.
+/// `shoal compare`: run the study with a progress bar on a terminal (a line per run otherwise),
+/// write the outputs and print the summary. Ctrl-C stops it after the run under way (a second
+/// Ctrl-C at once) and writes the finished runs, marked incomplete; exit code 130.
 fn compare(
     study: &shoal::compare::Study,
     out: &Path,
     keep_plans: bool,
     figure: bool,
 ) -> Result<ExitCode> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::{Arc, Mutex};
+    study.validate()?;
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     let total = study.runs();
-    let mut kept = Vec::new();
-    let rows = shoal::compare::run(study, &mut |i, planned| {
+    let bar = runs_bar(total, false);
+    let cancel = Arc::new(AtomicBool::new(false));
+    let finished: Arc<Mutex<Vec<shoal::compare::Row>>> = Arc::default();
+    {
+        let (cancel, finished, out) = (cancel.clone(), finished.clone(), out.to_path_buf());
+        ctrlc::set_handler(move || {
+            if !cancel.swap(true, Ordering::SeqCst) {
+                eprintln!(
+                    "stopping after the run under way (Ctrl-C again to stop at once); the \
+                     finished runs will be written"
+                );
+                return;
+            }
+            let rows = finished.lock().map(|r| r.clone()).unwrap_or_default();
+            match shoal::compare::write_tables(&out, &rows, total) {
+                Ok((csv, _, _)) => eprintln!("{}", interrupted(rows.len(), total, &csv)),
+                Err(e) => eprintln!("interrupted: {e}"),
+            }
+            std::process::exit(130);
+        })
+        .context("installing the Ctrl-C handler")?;
+    }
+    let mut plan_error = None;
+    let rows = shoal::compare::run_until(study, &cancel, &mut |i, planned| {
         let r = &planned.row;
-        eprintln!(
+        let line = format!(
             "[{}/{total}] {} {} N = {} seed {}: {} in {:.2} s{}",
             i + 1,
             r.scenario,
@@ -1181,23 +1188,32 @@ fn compare(
                 false => format!(" ({})", r.error),
             }
         );
+        match bar.is_hidden() {
+            true => eprintln!("{line}"),
+            false => bar.println(line),
+        }
+        bar.inc(1);
         if let (true, Some(plan)) = (keep_plans, &planned.plan) {
             let name = format!("{}-{}-n{}-s{}.json", r.scenario, r.method, r.auvs, r.seed);
-            kept.push((name, plan.clone()));
+            if let Err(e) = shoal::output::write_plan(plan, &out.join("plans").join(name)) {
+                plan_error.get_or_insert(e);
+            }
         }
-    })?;
-    for (name, plan) in &kept {
-        shoal::output::write_plan(plan, &out.join("plans").join(name))?;
+        if let Ok(mut f) = finished.lock() {
+            f.push(r.clone());
+        }
+    });
+    bar.finish_and_clear();
+    let rows = rows?;
+    if let Some(e) = plan_error {
+        return Err(e.into());
     }
-    let mut csv = csv::Writer::from_writer(Vec::new());
-    for r in &rows {
-        csv.serialize(r).context("writing runs.csv")?;
-    }
-    let bytes = csv.into_inner().context("writing runs.csv")?;
-    shoal::output::write_atomic(&out.join("runs.csv"), &bytes)?;
-    let table = shoal::compare::markdown(&shoal::compare::summary(&rows));
-    shoal::output::write_atomic(&out.join("summary.md"), table.as_bytes())?;
+    let (csv_path, md_path, table) = shoal::compare::write_tables(out, &rows, total)?;
     println!("{table}");
+    if rows.len() < total {
+        eprintln!("{}", interrupted(rows.len(), total, &csv_path));
+        return Ok(ExitCode::from(130));
+    }
     if figure {
         let mut methods: Vec<&str> = Vec::new();
         for r in &rows {
@@ -1210,31 +1226,25 @@ fn compare(
     }
     println!(
         "wrote {} and {}{}",
-        out.join("runs.csv").display(),
-        out.join("summary.md").display(),
+        csv_path.display(),
+        md_path.display(),
         if figure { " and compare.png/.svg" } else { "" }
     );
     Ok(ExitCode::SUCCESS)
 }
 
-/// `shoal sweep STUDY`: run it (or its shard) with a progress bar; print the totals.
-fn sweep(
-    path: &Path,
-    out: PathBuf,
-    shard: Option<&str>,
-    resume: bool,
-    quiet: bool,
-) -> Result<ExitCode> {
-    let study = shoal::sweep::Study::load(path)?;
-    let shard = match shard {
-        Some(text) => {
-            Some(shoal::sweep::Shard::parse(text).map_err(|e| anyhow::anyhow!("--shard {e}"))?)
-        }
-        None => shoal::sweep::Shard::from_env(|k| std::env::var(k).ok())
-            .map_err(|e| anyhow::anyhow!(e))?,
-    };
-    let opts = shoal::sweep::Options { out, shard, resume };
-    let total = study.runs().len();
+/// What an interrupted comparison says it kept.
+fn interrupted(done: usize, total: usize, csv: &Path) -> String {
+    format!(
+        "interrupted after {done} of {total} runs: wrote {} with the {done} finished runs \
+         (incomplete)",
+        csv.display()
+    )
+}
+
+/// A progress bar of `total` runs on stderr with the elapsed time and the ETA, hidden when
+/// `quiet` or when stderr is not a terminal.
+fn runs_bar(total: usize, quiet: bool) -> ProgressBar {
     let bar = match quiet {
         true => ProgressBar::hidden(),
         false => ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr()),
@@ -1245,22 +1255,113 @@ fn sweep(
         )
         .expect("a valid template"),
     );
-    let counts = std::sync::Mutex::new([0usize; 3]);
-    let outcome = shoal::sweep::run(&study, &opts, &|done| {
-        let mut c = counts.lock().unwrap_or_else(|p| p.into_inner());
-        match done.status.as_str() {
-            "passed" => c[0] += 1,
-            "violated" => c[1] += 1,
-            _ => c[2] += 1,
+    bar
+}
+
+/// `shoal sweep STUDY`: run it (or its shard) with a progress bar; print the totals. Exit
+/// code 0 when the table holds its runs and not every one failed, 1 when every run of the
+/// table failed, 130 when interrupted (Ctrl-C: the runs under way finish and keep their rows;
+/// a second Ctrl-C stops at once, every finished row already in the table).
+fn sweep(
+    path: &Path,
+    out: PathBuf,
+    shard: Option<&str>,
+    resume: bool,
+    quiet: bool,
+) -> Result<ExitCode> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    let study = shoal::sweep::Study::load(path)?;
+    let shard = match shard {
+        Some(text) => {
+            Some(shoal::sweep::Shard::parse(text).map_err(|e| anyhow::anyhow!("--shard {e}"))?)
         }
-        bar.set_message(format!(
-            "(passed {}, violated {}, failed {})",
-            c[0], c[1], c[2]
-        ));
-        bar.inc(1);
-    });
+        None => shoal::sweep::Shard::from_env(|k| std::env::var(k).ok())
+            .map_err(|e| anyhow::anyhow!(e))?,
+    };
+    let opts = shoal::sweep::Options { out, shard, resume };
+    let total = study
+        .total()
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let mine = shard.map_or(total, |s| s.runs(total).len());
+    let table = match shard {
+        Some(s) => s.table(&opts.out),
+        None => shoal::sweep::table_path(&opts.out),
+    };
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let (cancel, table) = (cancel.clone(), table.clone());
+        let again = format!(
+            "shoal sweep {} -o {} --resume",
+            path.display(),
+            opts.out.display()
+        );
+        ctrlc::set_handler(move || {
+            if !cancel.swap(true, Ordering::SeqCst) {
+                eprintln!(
+                    "stopping: no new run starts, the runs under way finish and keep their rows \
+                     (Ctrl-C again to stop at once)"
+                );
+                return;
+            }
+            eprintln!(
+                "interrupted: {} keeps every run that finished (each row is written as its run \
+                 ends); `{again}` makes the rest",
+                table.display()
+            );
+            std::process::exit(130);
+        })
+        .context("installing the Ctrl-C handler")?;
+    }
+    let bar = runs_bar(mine, quiet);
+    let counts = std::sync::Mutex::new([0usize; 3]);
+    let outcome = shoal::sweep::run_until(
+        &study,
+        &opts,
+        &|done| {
+            let mut c = counts.lock().unwrap_or_else(|p| p.into_inner());
+            match done.status.as_str() {
+                "passed" => c[0] += 1,
+                "violated" => c[1] += 1,
+                _ => c[2] += 1,
+            }
+            bar.set_message(format!(
+                "(passed {}, violated {}, failed {})",
+                c[0], c[1], c[2]
+            ));
+            bar.inc(1);
+        },
+        &cancel,
+    );
     bar.finish_and_clear();
     let o = outcome?;
+    for note in &o.notes {
+        eprintln!("warning: {note}");
+    }
+    let made = o.passed + o.violated + o.failed;
+    if o.interrupted {
+        eprintln!(
+            "interrupted after {made} of {} runs: wrote {} with the {} finished runs of its {} \
+             (incomplete; `shoal sweep {} -o {} --resume` makes the rest)",
+            o.mine - o.skipped,
+            o.table.display(),
+            o.rows,
+            o.mine,
+            path.display(),
+            opts.out.display()
+        );
+        return Ok(ExitCode::from(130));
+    }
+    if !o.complete {
+        eprintln!(
+            "error: {} holds {} of its {} runs (see the warnings above); `--resume` makes the \
+             rest",
+            o.table.display(),
+            o.rows,
+            o.mine
+        );
+        return Ok(ExitCode::from(1));
+    }
     println!(
         "{} of {} runs{}: {} passed, {} violated, {} failed{} in {:.1} s (the runs' own times sum to \
          {:.1} s: {:.2}× in parallel); wrote {}",
@@ -1282,5 +1383,13 @@ fn sweep(
             None => o.table.display().to_string(),
         }
     );
+    if o.rows > 0 && o.rows_failed == o.rows {
+        eprintln!(
+            "error: every run of {} failed (no plan), e.g. {}",
+            o.table.display(),
+            o.first_failure.as_deref().unwrap_or("?")
+        );
+        return Ok(ExitCode::from(1));
+    }
     Ok(ExitCode::SUCCESS)
 }

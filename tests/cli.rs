@@ -431,3 +431,112 @@ fn regression_a_seafloor_flag_error_names_the_flag() {
     );
     assert!(!err.contains("--set"), "{err}");
 }
+
+/// Regression: `shoal compare --seeds 1-1000000000` made the billion seeds in memory (7.75 GB)
+/// and aborted. The seeds of a range are counted from its ends, and a comparison of more than
+/// 1 000 000 runs (scenarios × planners × team sizes × seeds) is refused before any run.
+#[test]
+fn regression_a_huge_compare_is_refused() {
+    let (code, _, stderr) = common::run(shoal().args(["compare", "--seeds", "1-1000000000"]));
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains(
+            "--seeds 1-1000000000: 1 000 000 000 seeds; a comparison has at most 1 000 000 runs"
+        ),
+        "{stderr}"
+    );
+    let auvs: Vec<String> = (1..=40).map(|n| n.to_string()).collect();
+    let (code, _, stderr) =
+        common::run(shoal().args(["compare", "--seeds", "1-20000", "--auvs", &auvs.join(",")]));
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains(
+            "1 scenario × 2 planners × 40 team sizes × 20 000 seeds make 1 600 000 runs; a \
+             comparison has at most 1 000 000 runs"
+        ),
+        "{stderr}"
+    );
+    // the library's parser
+    use shoal::compare::parse_seeds;
+    assert_eq!(parse_seeds("3-5").unwrap(), [3, 4, 5]);
+    assert_eq!(parse_seeds("1,4,7").unwrap(), [1, 4, 7]);
+    let max = u64::MAX.to_string();
+    let e = parse_seeds(&format!("0-{max}")).unwrap_err().to_string();
+    assert!(e.contains("18 446 744 073 709 551 616 seeds"), "{e}");
+    for (bad, want) in [
+        ("5-1", "the range runs backwards (5 > 1)"),
+        ("x", "\"x\" is not a whole number"),
+        ("-3", "\"\" is not a whole number"),
+    ] {
+        let e = parse_seeds(bad).unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!("--seeds {bad}: ")) && e.contains(want),
+            "{e}"
+        );
+    }
+    // a team size the scenario does not allow is refused before any run
+    let study = shoal::compare::Study {
+        auvs: vec![1, 1_000_000_000_000],
+        seeds: vec![1],
+        ..shoal::compare::Study::default()
+    };
+    let e = shoal::compare::run(&study, &mut |_, _| panic!("no run is made"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("team.auvs = 1000000000000: must be"), "{e}");
+}
+
+/// Regression: Ctrl-C in `shoal compare` printed nothing and lost every finished run. It now
+/// stops after the run under way, writes the finished runs' runs.csv and summary.md marked
+/// incomplete, says so, and exits with code 130.
+#[cfg(unix)]
+#[test]
+fn regression_an_interrupted_compare_writes_its_finished_runs() {
+    use std::io::BufRead;
+    let dir = fresh_dir("compare-interrupted");
+    let mut child = shoal()
+        .args(["compare", "--no-plot", "-o", dir.to_str().unwrap()])
+        .args(["--set", "horizon.steps=6", "--auvs", "1", "--seeds", "1-30"])
+        .args(["--methods", "mpc"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // not a terminal: a line per run; interrupt after the first
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    while !line.starts_with("[1/30]") {
+        line.clear();
+        assert!(err.read_line(&mut line).unwrap() > 0, "compare ended early");
+    }
+    // SAFETY: sending a signal to our own child process
+    assert_eq!(
+        unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) },
+        0
+    );
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{rest}");
+    let rows = csv::Reader::from_path(dir.join("runs.csv"))
+        .unwrap()
+        .records()
+        .count();
+    assert!((1..30).contains(&rows), "{rows} rows");
+    assert!(
+        rest.contains(&format!(
+            "interrupted after {rows} of 30 runs: wrote {} with the {rows} finished runs \
+             (incomplete)",
+            dir.join("runs.csv").display()
+        )),
+        "{rest}"
+    );
+    let summary = std::fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert!(
+        summary.starts_with(&format!(
+            "**Incomplete**: the comparison was interrupted after {rows} of its 30 runs"
+        )),
+        "{summary}"
+    );
+    assert!(!dir.join("compare.png").exists());
+}

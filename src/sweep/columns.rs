@@ -2,10 +2,12 @@
 //! from what is known, not guessed from the text where it can be: `run` is a whole number, the
 //! row's columns take their [`Row`] field's type, the simulation's columns theirs
 //! ([`super::flown::KINDS`]), and an axis its TOML values' (all integers: a whole number; any
-//! real: a real; all booleans: a boolean; anything else: text). Only when the study is not at
-//! hand (`shoal sweep collect`) is an axis's type read from its column's text, the same way.
+//! real: a real; all booleans: a boolean; anything else: text; a range: a whole number), from
+//! the study or, for `shoal sweep collect`, from the shards' study record. Only a column of no
+//! known kind is typed from its text, the same way.
 
 use super::flown;
+use super::study::Values;
 use crate::compare::Row;
 use csv::StringRecord;
 use toml_edit::Value;
@@ -41,6 +43,15 @@ pub fn row_kinds() -> Vec<(String, Kind)> {
             (name.to_string(), kind)
         })
         .collect()
+}
+
+/// The type of an axis from its values: a range's are whole numbers, a list's their TOML
+/// type's.
+pub fn values_kind(values: &Values) -> Kind {
+    match values {
+        Values::Range { .. } => Kind::Int,
+        Values::List(v) => axis_kind(v),
+    }
 }
 
 /// The type of an axis from its values as TOML text.

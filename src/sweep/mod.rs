@@ -2,23 +2,34 @@
 //! by one file ([`Study`]), run on every core or in shards (one per task of a Slurm job array),
 //! each run a pure function of its resolved scenario that appends one row to a table
 //! ([`table`]); a run that fails records its error and the sweep goes on (docs/sweep.md). The
-//! final table is written twice: `runs.csv` and its typed copy `runs.parquet`.
+//! final table is written twice: `runs.csv` and its typed copy `runs.parquet`. Beside every
+//! table is the record of its study ([`record`]): `--resume` and `collect` refuse a table of
+//! another study, and `collect` names every row and run it cannot take ([`verify`]).
 
 mod columns;
 mod flown;
 mod parquet_file;
+pub mod record;
 pub mod study;
 pub mod table;
+mod verify;
 
-pub use study::{Axis, Run, Study};
+pub use crate::compare::MAX_RUNS;
+pub use record::Record;
+pub use study::{Axis, Run, Study, Values};
 
 use crate::compare::{plan_and_check, Base, Planned};
-use crate::scenario::{self, Scenario};
+use crate::scenario::{self, Scenario, ScenarioError};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 use thiserror::Error;
+use verify::Problem;
+
+/// At most this many problems are listed by a collect that is refused (then how many more).
+const PROBLEMS_SHOWN: usize = 50;
 
 /// Errors of a sweep as a whole (a run's own failure is recorded in its row).
 #[derive(Debug, Error)]
@@ -52,6 +63,66 @@ pub enum SweepError {
     /// A shard table to collect does not match the others.
     #[error("nothing to collect in {0}: no shard-*-of-*.csv table")]
     NothingToCollect(PathBuf),
+    /// The study's scenario (its base with its `[set]`) cannot be made: no run could be.
+    #[error("{study}: its scenario cannot be made, so no run could: {source}", study = .study.display())]
+    Base {
+        /// The study file.
+        study: PathBuf,
+        /// The scenario's error (naming its file, line and key).
+        #[source]
+        source: Box<ScenarioError>,
+    },
+    /// A table to resume that another study made, or that has no record of its study.
+    #[error("{path} was made by another study ({why}); use another -o or delete it", path = .path.display())]
+    AnotherStudy {
+        /// The table.
+        path: PathBuf,
+        /// What differs.
+        why: String,
+    },
+    /// Shard tables that cannot be collected whole: every problem with its file (listed by file
+    /// and line, the first [`PROBLEMS_SHOWN`], then how many more in each file).
+    #[error(
+        "{dir}: cannot collect the shard tables whole, nothing written; {n} problem{s}:\n  {list}",
+        dir = .dir.display(),
+        n = .problems.len(),
+        s = if .problems.len() == 1 { "" } else { "s" },
+        list = listed(.problems)
+    )]
+    Collect {
+        /// The sweep's directory.
+        dir: PathBuf,
+        /// Each problem: its file, and what is wrong (naming the file and the line).
+        problems: Vec<(PathBuf, String)>,
+    },
+}
+
+/// The first [`PROBLEMS_SHOWN`] problems, one a line, then how many more in each file.
+fn listed(problems: &[(PathBuf, String)]) -> String {
+    let mut lines: Vec<String> = problems
+        .iter()
+        .take(PROBLEMS_SHOWN)
+        .map(|(_, why)| why.clone())
+        .collect();
+    let mut more: Vec<(&PathBuf, usize)> = Vec::new();
+    for (file, _) in problems.iter().skip(PROBLEMS_SHOWN) {
+        match more.iter_mut().find(|(f, _)| *f == file) {
+            Some((_, n)) => *n += 1,
+            None => more.push((file, 1)),
+        }
+    }
+    if !more.is_empty() {
+        let each: Vec<String> = more
+            .iter()
+            .map(|(f, n)| format!("{n} in {}", f.display()))
+            .collect();
+        lines.push(format!(
+            "… and {} more: {}",
+            problems.len() - PROBLEMS_SHOWN,
+            each.join(", ")
+        ));
+    }
+    lines.join("\n  ")
 }
 
 /// Which runs this process makes: the I-th (0-based) of N parts of the study's runs, dealt
@@ -132,6 +203,20 @@ impl Shard {
         mine
     }
 
+    /// The runs of every shard of `count` (each ascending), dealt as [`Shard::runs`] deals
+    /// them, in one pass (`count` vectors: for as many shards as there are tables).
+    pub fn deal(count: usize, total: usize) -> Vec<Vec<usize>> {
+        let count = count.max(1);
+        let mut order: Vec<usize> = (0..total).collect();
+        order.sort_by_key(|&i| splitmix64(i as u64));
+        let mut shards = vec![Vec::new(); count];
+        for (k, run) in order.into_iter().enumerate() {
+            shards[k % count].push(run);
+        }
+        shards.iter_mut().for_each(|s| s.sort_unstable());
+        shards
+    }
+
     /// The table file of this shard in `dir`.
     pub fn table(&self, dir: &Path) -> PathBuf {
         dir.join(format!("shard-{}-of-{}.csv", self.index, self.count))
@@ -183,6 +268,19 @@ pub struct Outcome {
     pub wall_s: f64,
     /// Sum of the runs' own wall times, s (over the wall time: the parallel speed-up).
     pub runs_s: f64,
+    /// Rows in the table now (this process's table: its shard's).
+    pub rows: usize,
+    /// Of those, runs that made no plan.
+    pub rows_failed: usize,
+    /// The error of the failed row of the lowest run, when one failed: "run I: why".
+    pub first_failure: Option<String>,
+    /// Whether the table holds every run it should (its shard's, or the study's).
+    pub complete: bool,
+    /// Whether the sweep was cancelled before every run was made.
+    pub interrupted: bool,
+    /// Rows of a resumed table that could not be taken (damaged), each by its line; their runs
+    /// were made again.
+    pub notes: Vec<String>,
 }
 
 /// The table of a sweep without shards.
@@ -195,26 +293,70 @@ pub fn parquet_path(dir: &Path) -> PathBuf {
     parquet_file::beside(&table_path(dir))
 }
 
-/// Write the typed copy of the table `csv` (its `header` and sorted `records`) beside it;
-/// an axis's type is its TOML values' when `study` is given, else read from its column.
+/// Write the typed copy of the table `csv` (its `header` and sorted `records`) beside it, an
+/// axis's type its values' (`axes`); `study` (the study file's name) goes into its metadata.
 fn write_parquet(
     csv: &Path,
     header: &csv::StringRecord,
     records: &[csv::StringRecord],
-    study: Option<&Study>,
+    axes: &[Axis],
+    study: Option<&str>,
 ) -> Result<PathBuf, SweepError> {
     let axis = |key: &str| {
-        study
-            .and_then(|s| s.axes.iter().find(|a| a.key == key))
-            .map(|a| columns::axis_kind(&a.values))
+        axes.iter()
+            .find(|a| a.key == key)
+            .map(|a| columns::values_kind(&a.values))
     };
     let kinds = columns::kinds(header, records, axis);
     let path = parquet_file::beside(csv);
-    let name = study
-        .and_then(|s| s.path.file_name())
-        .map(|n| n.to_string_lossy());
-    parquet_file::write(&path, header, &kinds, records, name.as_deref())?;
+    parquet_file::write(&path, header, &kinds, records, study)?;
     Ok(path)
+}
+
+/// The table's columns for `study`: `run`, its axes (but `seed`), the row's, and with
+/// `simulate` the flight's.
+fn header_of(study: &Study) -> csv::StringRecord {
+    let keys: Vec<String> = study.axes.iter().map(|a| a.key.clone()).collect();
+    let mut header = table::header(&keys);
+    if study.simulate {
+        flown::COLUMNS.iter().for_each(|c| header.push_field(c));
+    }
+    header
+}
+
+/// Make the study's scenario once, before any run: its base with its `[set]` and run 0's axis
+/// values. An error that only an axis's value causes (a value out of range, of the wrong type)
+/// is that run's, recorded in its row; any other (the base scenario unreadable or malformed, a
+/// bad `[set]`, an axis key no scenario has) would fail every run, and refuses the study.
+fn preflight(study: &Study) -> Result<(), SweepError> {
+    let overrides = study.overrides(&study.run(0));
+    let axis_sets: Vec<String> = overrides[study.set.len()..]
+        .iter()
+        .map(|o| format!("--set {o}"))
+        .collect();
+    let made = match &study.scenario {
+        Some(path) => scenario::load(path, &overrides),
+        None => scenario::default_with(&overrides),
+    };
+    match made {
+        Ok(_) => Ok(()),
+        Err(e)
+            if axis_sets.contains(&e.source_name())
+                && matches!(
+                    e,
+                    ScenarioError::OutOfRange { .. }
+                        | ScenarioError::WrongType { .. }
+                        | ScenarioError::MissingKey { .. }
+                        | ScenarioError::Invalid { .. }
+                ) =>
+        {
+            Ok(())
+        }
+        Err(e) => Err(SweepError::Base {
+            study: study.path.clone(),
+            source: Box::new(e),
+        }),
+    }
 }
 
 /// Run `study` (its shard, if any) on every core of the current rayon pool; `progress` hears of
@@ -224,46 +366,100 @@ pub fn run(
     opts: &Options,
     progress: &(dyn Fn(&Done) + Sync),
 ) -> Result<Outcome, SweepError> {
+    run_until(study, opts, progress, &AtomicBool::new(false))
+}
+
+/// [`run`], starting no new run once `cancel` is set (the runs under way finish and keep their
+/// rows): the table then holds the runs made so far, sorted, `Outcome::interrupted` is set,
+/// and `--resume` makes the rest.
+///
+/// Before any run: the study's size is checked ([`MAX_RUNS`]), its scenario made once
+/// (an error that would fail every run refuses the study, [`SweepError::Base`]), and the
+/// table's study record written beside it ([`record`]). With `resume`, a table whose record
+/// is another study's (or that has none) is refused, and its rows that cannot be taken
+/// (damaged) are dropped and their runs made again (`Outcome::notes`).
+pub fn run_until(
+    study: &Study,
+    opts: &Options,
+    progress: &(dyn Fn(&Done) + Sync),
+    cancel: &AtomicBool,
+) -> Result<Outcome, SweepError> {
     let clock = Instant::now();
-    let runs = study.runs();
+    let total = study.total().map_err(|why| SweepError::Study {
+        path: study.path.clone(),
+        why,
+    })?;
+    preflight(study)?;
+    let header = header_of(study);
     let keys: Vec<String> = study.axes.iter().map(|a| a.key.clone()).collect();
-    let mut header = table::header(&keys);
-    if study.simulate {
-        flown::COLUMNS.iter().for_each(|c| header.push_field(c));
-    }
     let path = match opts.shard {
         Some(s) => s.table(&opts.out),
         None => table_path(&opts.out),
     };
-    if !opts.resume && path.exists() {
+    let record_path = record::path_of(&path);
+    let columns: Vec<String> = header.iter().map(String::from).collect();
+    let record = Record::of(study, opts.shard, &columns)?;
+    if opts.resume && path.exists() {
+        let why = match Record::read(&record_path)? {
+            None => vec![format!(
+                "it has no study record: {} is missing",
+                record_path.display()
+            )],
+            Some(then) => then.differences(&record),
+        };
+        if !why.is_empty() {
+            return Err(SweepError::AnotherStudy {
+                path,
+                why: why.join("; "),
+            });
+        }
+    } else if path.exists() {
         std::fs::remove_file(&path).map_err(|e| SweepError::Table {
             path: path.clone(),
             why: format!("cannot start it afresh: {e}"),
         })?;
     }
-    let done: std::collections::HashSet<usize> = match table::read(&path)? {
-        Some((h, records)) if h == header => records
-            .iter()
-            .filter_map(|r| r.get(0).and_then(|v| v.parse().ok()))
-            .collect(),
-        _ => Default::default(),
+    // runs.parquet is the typed copy of a whole table: gone until the table is whole again
+    let parquet = parquet_file::beside(&path);
+    if opts.shard.is_none() && parquet.exists() {
+        std::fs::remove_file(&parquet).map_err(|e| SweepError::Table {
+            path: parquet.clone(),
+            why: format!("cannot remove the typed copy of the table being remade: {e}"),
+        })?;
+    }
+    record.write(&record_path)?;
+    let mine: Vec<usize> = match opts.shard {
+        Some(s) => s.runs(total),
+        None => (0..total).collect(),
     };
-    let mine: Vec<&Run> = match opts.shard {
-        Some(s) => s.runs(runs.len()).into_iter().map(|i| &runs[i]).collect(),
-        None => runs.iter().collect(),
-    };
-    let todo: Vec<&&Run> = mine.iter().filter(|r| !done.contains(&r.index)).collect();
+    let checked = verify::table(&path, &record, &mine)?;
+    if let Some(p) = checked
+        .problems
+        .iter()
+        .find(|p| matches!(p, Problem::Columns(_)))
+    {
+        return Err(SweepError::AnotherStudy {
+            path: path.clone(),
+            why: p.describe(&path),
+        });
+    }
+    let done: std::collections::HashSet<usize> = checked.rows.iter().filter_map(run_of).collect();
+    let todo: Vec<usize> = mine.iter().copied().filter(|r| !done.contains(r)).collect();
     let appender = Mutex::new(table::Appender::open(&path, &header)?);
     let base = base_of(study);
     let outcome = Mutex::new(Outcome {
         table: path.clone(),
-        total: runs.len(),
+        total,
         mine: mine.len(),
         skipped: mine.len() - todo.len(),
         ..Outcome::default()
     });
     let write_error = Mutex::new(None);
-    todo.par_iter().for_each(|run| {
+    todo.par_iter().for_each(|&index| {
+        if cancel.load(Ordering::SeqCst) {
+            return;
+        }
+        let run = &study.run(index);
         let clock = Instant::now();
         let planned = run_one(study, &base, run);
         let r = &planned.row;
@@ -308,23 +504,70 @@ pub fn run(
         return Err(SweepError::Table { path, why });
     }
     drop(appender);
-    let (_, records) = table::read(&path)?.unwrap_or_default();
-    let records = table::write_sorted(&path, &header, records)?;
+    // the rows taken (a damaged row of a resumed table is dropped here, and said so; its run
+    // was made again)
+    let checked = verify::table(&path, &record, &mine)?;
     let mut o = outcome.into_inner().unwrap_or_else(|p| p.into_inner());
-    if opts.shard.is_none() {
-        o.parquet = Some(write_parquet(&path, &header, &records, Some(study))?);
+    o.notes = checked
+        .problems
+        .iter()
+        .filter(|p| matches!(p, Problem::Row { .. } | Problem::Cut { .. }))
+        .map(|p| format!("{}: row dropped", p.describe(&path)))
+        .collect();
+    let records = table::write_sorted(&path, &header, checked.rows)?;
+    tally(&mut o, &header, &records);
+    o.complete = records.len() == record.table_runs;
+    o.interrupted = cancel.load(Ordering::SeqCst) && !o.complete;
+    if opts.shard.is_none() && o.complete {
+        let name = study.path.file_name().map(|n| n.to_string_lossy());
+        o.parquet = Some(write_parquet(
+            &path,
+            &header,
+            &records,
+            &study.axes,
+            name.as_deref(),
+        )?);
     }
     o.wall_s = clock.elapsed().as_secs_f64();
     Ok(o)
 }
 
+/// A row's run index.
+fn run_of(r: &csv::StringRecord) -> Option<usize> {
+    r.get(0).and_then(|v| v.parse().ok())
+}
+
+/// Count the table's rows and those that failed, and name the first failure.
+fn tally(o: &mut Outcome, header: &csv::StringRecord, records: &[csv::StringRecord]) {
+    let col = |name: &str| header.iter().position(|h| h == name);
+    let (status, error) = (col("status"), col("error"));
+    o.rows = records.len();
+    let failed: Vec<&csv::StringRecord> = records
+        .iter()
+        .filter(|r| status.and_then(|i| r.get(i)) == Some("failed"))
+        .collect();
+    o.rows_failed = failed.len();
+    o.first_failure = failed.first().map(|r| {
+        format!(
+            "run {}: {}",
+            r.get(0).unwrap_or("?"),
+            error.and_then(|i| r.get(i)).unwrap_or("")
+        )
+    });
+}
+
+/// The study's name: its file's stem (the rows' `scenario` column).
+pub(crate) fn study_name(study: &Study) -> String {
+    study
+        .path
+        .file_stem()
+        .map_or("study".into(), |s| s.to_string_lossy().into_owned())
+}
+
 /// The study's base: its name (the study file's stem) and where its scenario's relative
 /// paths resolve.
 fn base_of(study: &Study) -> Base {
-    let name = study
-        .path
-        .file_stem()
-        .map_or("study".into(), |s| s.to_string_lossy().into_owned());
+    let name = study_name(study);
     let dir = match &study.scenario {
         Some(p) => p.parent().unwrap_or(Path::new(".")).to_path_buf(),
         None => study.path.parent().unwrap_or(Path::new(".")).to_path_buf(),
@@ -373,14 +616,9 @@ fn splitmix64(x: u64) -> u64 {
 /// another split (an earlier sweep's) or a missing shard (a task that never ran) would make a
 /// table that is not the study's.
 fn check_shards(dir: &Path, shards: &[PathBuf]) -> Result<(), SweepError> {
-    let split = |p: &PathBuf| -> Option<(usize, usize)> {
-        let name = p.file_stem()?.to_str()?.strip_prefix("shard-")?;
-        let (i, n) = name.split_once("-of-")?;
-        Some((i.parse().ok()?, n.parse().ok()?))
-    };
     let mut counts = std::collections::BTreeMap::<usize, Vec<usize>>::new();
     for p in shards {
-        let (i, n) = split(p).ok_or_else(|| SweepError::Table {
+        let (i, n) = shard_of_name(p).ok_or_else(|| SweepError::Table {
             path: p.clone(),
             why: "not a shard table's name (shard-I-of-N.csv)".into(),
         })?;
@@ -417,8 +655,11 @@ fn check_shards(dir: &Path, shards: &[PathBuf]) -> Result<(), SweepError> {
 }
 
 /// Merge the shard tables of `dir` (`shard-I-of-N.csv`) into `dir/runs.csv`, sorted by run,
-/// and its typed copy `dir/runs.parquet` (each axis's type read from its column, the study
-/// not being at hand). Returns the CSV table and its number of rows.
+/// with its study record and its typed copy `dir/runs.parquet`. Each shard table is read
+/// against its study record (`shard-I-of-N.study.json`): the shards must be of one study and
+/// one split, and each must hold every run of its shard and nothing else, each row whole. Any
+/// problem refuses the collect and nothing is written ([`SweepError::Collect`] names every
+/// file and line). Returns the CSV table and its number of rows.
 pub fn collect(dir: &Path) -> Result<(PathBuf, usize), SweepError> {
     let mut shards: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|e| SweepError::Table {
@@ -435,25 +676,119 @@ pub fn collect(dir: &Path) -> Result<(PathBuf, usize), SweepError> {
         .collect();
     shards.sort();
     check_shards(dir, &shards)?;
-    let mut header = None;
+    // each problem with the file it is in
+    let mut problems: Vec<(PathBuf, String)> = Vec::new();
+    let mut first: Option<(PathBuf, Record, Vec<Vec<usize>>)> = None;
     let mut records = Vec::new();
     for p in &shards {
-        if let Some((h, recs)) = table::read(p)? {
-            match &header {
-                Some(first) if first != &h => {
-                    return Err(SweepError::Table {
-                        path: p.clone(),
-                        why: "its columns differ from the other shards' (another study?)".into(),
-                    })
-                }
-                _ => header = Some(h),
+        let rp = record::path_of(p);
+        let r = match Record::read(&rp) {
+            Ok(Some(r)) => r,
+            Ok(None) => {
+                let why = format!(
+                    "{}: no study record beside it ({} is missing); make the shard again",
+                    p.display(),
+                    rp.display()
+                );
+                problems.push((p.clone(), why));
+                continue;
             }
-            records.extend(recs);
+            Err(e) => {
+                problems.push((p.clone(), e.to_string()));
+                continue;
+            }
+        };
+        let named = shard_of_name(p);
+        let recorded = r.shard.map(|s| (s.index, s.count));
+        let Some((index, count)) = named.filter(|n| recorded == Some(*n)) else {
+            let why = format!(
+                "{}: the record is of {}, not of this shard's table",
+                rp.display(),
+                recorded.map_or("the whole study".into(), |(i, n)| format!("shard {i}/{n}"))
+            );
+            problems.push((p.clone(), why));
+            continue;
+        };
+        match &first {
+            Some((fp, f, _)) => {
+                let d = f.whole().differences(&r.whole());
+                if !d.is_empty() {
+                    let why = format!(
+                        "{} was made by another study than {} ({})",
+                        p.display(),
+                        fp.display(),
+                        d.join("; ")
+                    );
+                    problems.push((p.clone(), why));
+                    continue;
+                }
+            }
+            None => first = Some((p.clone(), r.clone(), Shard::deal(count, r.runs))),
         }
+        let dealt = first.as_ref().map(|f| &f.2[index]);
+        let checked = verify::table(p, &r, dealt.map_or(&[][..], Vec::as_slice))?;
+        problems.extend(checked.problems.iter().map(|x| (p.clone(), x.describe(p))));
+        records.extend(checked.rows);
     }
-    let header = header.ok_or_else(|| SweepError::NothingToCollect(dir.to_path_buf()))?;
+    if !problems.is_empty() {
+        return Err(SweepError::Collect {
+            dir: dir.to_path_buf(),
+            problems,
+        });
+    }
+    let whole = first
+        .ok_or_else(|| SweepError::NothingToCollect(dir.to_path_buf()))?
+        .1
+        .whole();
+    let header = csv::StringRecord::from(whole.columns.clone());
     let path = table_path(dir);
     let records = table::write_sorted(&path, &header, records)?;
-    write_parquet(&path, &header, &records, None)?;
+    whole.write(&record::path_of(&path))?;
+    let name = Path::new(&whole.study)
+        .file_name()
+        .map(|n| n.to_string_lossy());
+    write_parquet(
+        &path,
+        &header,
+        &records,
+        &whole.content.axes,
+        name.as_deref(),
+    )?;
     Ok((path, records.len()))
+}
+
+/// (I, N) of a shard table's name `shard-I-of-N.csv`.
+fn shard_of_name(p: &Path) -> Option<(usize, usize)> {
+    let name = p.file_stem()?.to_str()?.strip_prefix("shard-")?;
+    let (i, n) = name.split_once("-of-")?;
+    Some((i.parse().ok()?, n.parse().ok()?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_refused_collect_lists_the_first_problems_then_how_many_more_in_each_file() {
+        let (a, b) = (
+            PathBuf::from("d/shard-0-of-2.csv"),
+            PathBuf::from("d/shard-1-of-2.csv"),
+        );
+        let mut problems: Vec<(PathBuf, String)> = (0..PROBLEMS_SHOWN + 3)
+            .map(|i| (a.clone(), format!("d/shard-0-of-2.csv line {}: bad", i + 2)))
+            .collect();
+        problems.push((b.clone(), "d/shard-1-of-2.csv: empty file".into()));
+        let e = SweepError::Collect {
+            dir: "d".into(),
+            problems,
+        }
+        .to_string();
+        assert!(e.starts_with("d: cannot collect the shard tables whole, nothing written; 54 problems:\n  d/shard-0-of-2.csv line 2: bad\n"), "{e}");
+        assert!(e.contains("line 51: bad\n"), "{e}");
+        assert!(!e.contains("line 52: bad"), "{e}");
+        assert!(
+            e.ends_with("… and 4 more: 3 in d/shard-0-of-2.csv, 1 in d/shard-1-of-2.csv"),
+            "{e}"
+        );
+    }
 }

@@ -16,17 +16,65 @@
 //! ```
 
 use super::SweepError;
-use crate::compare::Method;
+use crate::compare::{grouped, Method, MAX_RUNS};
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use toml_edit::{DocumentMut, Item, Value};
 
 /// One axis: a scenario key and the values it takes, each as TOML text.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Axis {
     /// The dotted scenario key, e.g. "team.auvs".
     pub key: String,
-    /// Its values, as TOML (e.g. `5`, `"a.tif"`), in order.
-    pub values: Vec<String>,
+    /// Its values, in order.
+    pub values: Values,
+}
+
+/// The values of an axis: a list as written, or a range of whole numbers kept as its two ends
+/// (a range is never made into a list: `seed = "0..1000000000000"` is two numbers).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Values {
+    /// Each value as TOML text (e.g. `5`, `"a.tif"`).
+    List(Vec<String>),
+    /// The whole numbers from `first` to `last`, both included (`first` ≤ `last`).
+    Range {
+        /// The first value.
+        first: i64,
+        /// The last value.
+        last: i64,
+    },
+}
+
+impl Values {
+    /// How many values (a full 64-bit range has 2^64: more than a u64 holds).
+    pub fn len(&self) -> u128 {
+        match self {
+            Values::List(v) => v.len() as u128,
+            Values::Range { first, last } => (i128::from(*last) - i128::from(*first) + 1) as u128,
+        }
+    }
+
+    /// Whether there is no value.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The `i`-th value (0-based, `i` < [`Values::len`]) as TOML text.
+    pub fn get(&self, i: usize) -> String {
+        match self {
+            Values::List(v) => v.get(i).cloned().unwrap_or_default(),
+            Values::Range { first, .. } => (i128::from(*first) + i as i128).to_string(),
+        }
+    }
+
+    /// The values as the study writes them: `"a..b"` or `[x, y]`.
+    pub fn describe(&self) -> String {
+        match self {
+            Values::List(v) => format!("[{}]", v.join(", ")),
+            Values::Range { first, last } => format!("\"{first}..{last}\""),
+        }
+    }
 }
 
 /// A parsed study.
@@ -137,23 +185,57 @@ impl Study {
         if let Some(a) = study.axes.iter().find(|a| a.values.is_empty()) {
             return Err(bad(format!("axes.\"{}\": has no value", a.key)));
         }
+        study.total().map_err(bad)?;
         Ok(study)
     }
 
-    /// Every run, in order.
-    pub fn runs(&self) -> Vec<Run> {
-        let total: usize = self.axes.iter().map(|a| a.values.len()).product();
-        (0..total)
-            .map(|index| {
-                let mut rest = index;
-                let mut values = vec![String::new(); self.axes.len()];
-                for (i, a) in self.axes.iter().enumerate().rev() {
-                    values[i] = a.values[rest % a.values.len()].clone();
-                    rest /= a.values.len();
-                }
-                Run { index, values }
-            })
-            .collect()
+    /// How many runs the study makes: the product of its axes' sizes, computed from each
+    /// axis's size (a range's from its ends) with checked arithmetic; more than [`MAX_RUNS`]
+    /// is refused, saying what each axis contributes.
+    pub fn total(&self) -> Result<usize, String> {
+        let sizes: Vec<u128> = self.axes.iter().map(|a| a.values.len()).collect();
+        let product = sizes.iter().try_fold(1u128, |p, &n| p.checked_mul(n));
+        match product {
+            Some(n) if n <= MAX_RUNS as u128 => Ok(n as usize),
+            _ => {
+                let factors = match sizes.as_slice() {
+                    [first, rest @ ..] if !rest.is_empty() && rest.iter().all(|n| n == first) => {
+                        format!("{} axes of {} values", sizes.len(), grouped(*first))
+                    }
+                    _ => self
+                        .axes
+                        .iter()
+                        .map(|a| format!("{} ({} values)", a.key, grouped(a.values.len())))
+                        .collect::<Vec<_>>()
+                        .join(" × "),
+                };
+                let runs = match product {
+                    Some(n) if n > u128::from(u64::MAX) => {
+                        format!("{} runs (more than a 64-bit count holds)", grouped(n))
+                    }
+                    Some(n) => format!("{} runs", grouped(n)),
+                    None => format!("more than {} runs", grouped(u128::MAX)),
+                };
+                Err(format!(
+                    "axes: {factors} make {runs}; a study has at most {} runs (docs/sweep.md)",
+                    grouped(MAX_RUNS as u128)
+                ))
+            }
+        }
+    }
+
+    /// Run `index` (0-based, below [`Study::total`]): each axis's value, the first axis
+    /// slowest.
+    pub fn run(&self, index: usize) -> Run {
+        Run {
+            index,
+            values: values_of(&self.axes, index),
+        }
+    }
+
+    /// Every run, in order (the study checked: at most [`MAX_RUNS`]).
+    pub fn runs(&self) -> impl Iterator<Item = Run> + '_ {
+        (0..self.total().unwrap_or(0)).map(|i| self.run(i))
     }
 
     /// The overrides of `run`: the study's `set`, then its axes' values. A floor file given
@@ -199,10 +281,25 @@ impl Study {
     }
 }
 
-/// An axis's values: an array, or a range "a..b" of whole numbers (both ends included).
-fn axis_values(item: &Item) -> Result<Vec<String>, String> {
+/// The values of `axes` in run `index` (the first axis slowest), as TOML text.
+pub fn values_of(axes: &[Axis], index: usize) -> Vec<String> {
+    let mut rest = index as u128;
+    let mut values = vec![String::new(); axes.len()];
+    for (i, a) in axes.iter().enumerate().rev() {
+        let n = a.values.len().max(1);
+        values[i] = a.values.get((rest % n) as usize);
+        rest /= n;
+    }
+    values
+}
+
+/// An axis's values: an array, or a range "a..b" of whole numbers (both ends included), kept
+/// as its ends.
+fn axis_values(item: &Item) -> Result<Values, String> {
     match item.as_value() {
-        Some(Value::Array(a)) => Ok(a.iter().map(|v| v.to_string().trim().to_string()).collect()),
+        Some(Value::Array(a)) => Ok(Values::List(
+            a.iter().map(|v| v.to_string().trim().to_string()).collect(),
+        )),
         Some(Value::String(s)) => {
             let text = s.value();
             let (a, b) = text
@@ -218,9 +315,9 @@ fn axis_values(item: &Item) -> Result<Vec<String>, String> {
             if a > b {
                 return Err(format!("\"{text}\": the range runs backwards"));
             }
-            Ok((a..=b).map(|v| v.to_string()).collect())
+            Ok(Values::Range { first: a, last: b })
         }
-        Some(v) => Ok(vec![v.to_string().trim().to_string()]),
+        Some(v) => Ok(Values::List(vec![v.to_string().trim().to_string()])),
         None => Err("must be an array of values or a range \"a..b\"".into()),
     }
 }
@@ -242,8 +339,8 @@ mod tests {
         .unwrap();
         assert_eq!(s.scenario, Some(PathBuf::from("dir/m.toml")));
         assert_eq!(s.method, Method::RrtLike);
-        let runs = s.runs();
-        assert_eq!(runs.len(), 6);
+        let runs: Vec<Run> = s.runs().collect();
+        assert_eq!((runs.len(), s.total()), (6, Ok(6)));
         assert_eq!(runs[0].values, ["1", "3"]);
         assert_eq!(runs[1].values, ["1", "5"]);
         assert_eq!(runs[5].values, ["3", "5"]);
@@ -256,7 +353,7 @@ mod tests {
     #[test]
     fn no_axis_is_one_run_and_an_axis_of_strings_keeps_its_quotes() {
         let s = parse("").unwrap();
-        assert_eq!(s.runs().len(), 1);
+        assert_eq!(s.total(), Ok(1));
         let s = parse("[axes]\n\"seafloor.file\" = [\"a.tif\", \"/b.asc\"]\n").unwrap();
         // relative to the study file's directory, as its scenario is; absolute as given
         let cwd = std::env::current_dir().unwrap();
@@ -264,8 +361,8 @@ mod tests {
             "seafloor.file={}",
             Value::from(cwd.join("dir/a.tif").to_str().unwrap())
         );
-        assert_eq!(s.overrides(&s.runs()[0]), [a]);
-        assert_eq!(s.overrides(&s.runs()[1]), ["seafloor.file=\"/b.asc\""]);
+        assert_eq!(s.overrides(&s.run(0)), [a]);
+        assert_eq!(s.overrides(&s.run(1)), ["seafloor.file=\"/b.asc\""]);
     }
 
     #[test]

@@ -25,7 +25,7 @@ pub fn row_fields(row: &Row) -> (StringRecord, StringRecord) {
 
 /// Whether axis `key` has a column of its own: not when a row column has its name (`seed`:
 /// the row's `seed` is the same value).
-fn own_column(key: &str, names: &StringRecord) -> bool {
+pub(crate) fn own_column(key: &str, names: &StringRecord) -> bool {
     !names.iter().any(|n| n == key)
 }
 
