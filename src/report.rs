@@ -100,9 +100,10 @@ pub fn summary_table(plan: &Plan) -> String {
         let m = &plan.metrics;
         let _ = writeln!(
             t,
-            "explored over the mission: {:.3} km² (each place once); {:.3} km² more was swept \
+            "explored over the mission: {} km² (each place once); {} km² more was swept \
              again in a later window",
-            m.explored_area_km2, m.revisited_area_km2
+            fixed(m.explored_area_km2, 3),
+            fixed(m.revisited_area_km2, 3)
         );
     }
     t
@@ -156,18 +157,35 @@ fn row(
         window,
         step1,
         step3,
-        format!("{:.3}", m.input_energy),
-        format!("{:.1}", m.mean_height),
-        format!("{:.1}", m.min_height),
-        format!("{moved:.0}"),
-        format!("{travelled:.0}"),
-        format!("{:.3}", m.explored_area_km2),
-        format!("{:.1}", 100.0 * m.connected_fraction),
-        format!("{:.1}", 100.0 * m.chain_fraction),
+        fixed(m.input_energy, 3),
+        fixed(m.mean_height, 1),
+        fixed(m.min_height, 1),
+        fixed(moved, 0),
+        fixed(travelled, 0),
+        fixed(m.explored_area_km2, 3),
+        fixed(100.0 * m.connected_fraction, 1),
+        fixed(100.0 * m.chain_fraction, 1),
         off_band.to_string(),
         format!("{:.2e}", m.max_heading_rate),
-        format!("{:.3}", m.step1_time_s + m.step2_time_s + m.step3_time_s),
+        fixed(m.step1_time_s + m.step2_time_s + m.step3_time_s, 3),
     ]
+}
+
+/// `v` with `decimals` decimals, and never "-0.000": a value that rounds to zero is written
+/// without its sign.
+pub fn fixed(v: f64, decimals: usize) -> String {
+    no_negative_zero(format!("{v:.decimals$}"))
+}
+
+/// `text` (a formatted number) without the sign of a negative zero: "-0.000" becomes "0.000",
+/// "-0" becomes "0"; any other text is returned as it is.
+pub fn no_negative_zero(text: String) -> String {
+    match text.strip_prefix('-') {
+        Some(rest) if !rest.is_empty() && rest.chars().all(|c| c == '0' || c == '.') => {
+            rest.to_string()
+        }
+        _ => text,
+    }
 }
 
 fn line(cells: &[String; 14]) -> String {
@@ -178,4 +196,21 @@ fn line(cells: &[String; 14]) -> String {
         .map(|(c, w)| format!("{c:>w$}"))
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn regression_a_negative_zero_is_printed_as_zero() {
+        assert_eq!(fixed(-0.0, 3), "0.000");
+        assert_eq!(fixed(-1e-9, 3), "0.000");
+        assert_eq!(fixed(-0.0004, 0), "0");
+        assert_eq!(fixed(-0.0006, 3), "-0.001");
+        assert_eq!(fixed(-2.5, 1), "-2.5");
+        assert_eq!(no_negative_zero("-".into()), "-");
+        assert_eq!(no_negative_zero("-inf".into()), "-inf");
+        assert_eq!(no_negative_zero("-NaN".into()), "-NaN");
+    }
 }
