@@ -3,6 +3,7 @@
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use shoal::report::{printable, printable_lines};
 use shoal::scenario::{self, Scenario};
 use shoal::Progress;
 use std::path::{Path, PathBuf};
@@ -320,7 +321,7 @@ fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {}", error_chain(&e));
+            eprintln!("error: {}", printable_lines(&error_chain(&e)));
             ExitCode::from(2)
         }
     }
@@ -409,22 +410,23 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let report = shoal::check::check_plan(&p, &floor);
             print!("{}", report.table());
             for w in &p.warnings {
-                eprintln!("warning: {w}");
+                eprintln!("warning: {}", printable(w));
             }
+            let name = plan.display().to_string();
+            let name = printable(&name);
             if report.passed() {
                 let unconverged = p.unconverged_stages();
                 if unconverged == 0 {
-                    println!("{}: every constraint holds", plan.display());
+                    println!("{name}: every constraint holds");
                 } else {
                     println!(
-                        "{}: every constraint holds, but {unconverged} stage(s) did not \
-                         converge: feasible, not optimal",
-                        plan.display()
+                        "{name}: every constraint holds, but {unconverged} stage(s) did not \
+                         converge: feasible, not optimal"
                     );
                 }
                 Ok(ExitCode::SUCCESS)
             } else {
-                println!("{}: VIOLATED (see FAIL rows)", plan.display());
+                println!("{name}: VIOLATED (see FAIL rows)");
                 Ok(ExitCode::from(1))
             }
         }
@@ -546,7 +548,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                         cell,
                     };
                     let g = shoal::seafloor::export_grid(&file, &opts)?;
-                    g.warnings.iter().for_each(|w| eprintln!("warning: {w}"));
+                    g.warnings
+                        .iter()
+                        .for_each(|w| eprintln!("warning: {}", printable(w)));
                     let notes = shoal::output::write_grid(&g.floor, &g.crs, None, &out)?;
                     let (lo, hi) = g.floor.z_range();
                     println!(
@@ -559,8 +563,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
                         g.floor.y0(),
                         g.floor.dx(),
                         g.floor.dy(),
-                        g.crs,
-                        g.crs_source
+                        printable(&g.crs.to_string()),
+                        printable(&g.crs_source.to_string())
                     );
                     notes
                 }
@@ -571,7 +575,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     source
                         .warnings
                         .iter()
-                        .for_each(|w| eprintln!("warning: {w}"));
+                        .for_each(|w| eprintln!("warning: {}", printable(w)));
                     let region = match (region, region_latlon, source.origin) {
                         (Some(r), _, _) => Some(r),
                         (_, Some(b), Some([lat, lon])) => {
@@ -618,7 +622,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let info =
                 shoal::seafloor::info_with_crs(&file, values_of(Some(&values)), crs.as_deref())?;
             print!("{info}");
-            info.warnings.iter().for_each(|w| eprintln!("warning: {w}"));
+            info.warnings
+                .iter()
+                .for_each(|w| eprintln!("warning: {}", printable(w)));
             Ok(ExitCode::SUCCESS)
         }
     }
@@ -662,7 +668,7 @@ fn simulate(
     let record = shoal::sim::monte_carlo(&p, &name, &floor, seed, runs)?;
     let out = out.unwrap_or_else(|| base_dir(Some(plan)).join("sim.json"));
     shoal::sim::write(&record, &out)?;
-    print!("{}", shoal::sim::summary::table(&record));
+    print!("{}", printable_lines(&shoal::sim::summary::table(&record)));
     if figures {
         let dir = base_dir(Some(&out)).join("figures");
         let files = shoal::figures::write_sim(&p, &floor, &record, &dir)
@@ -892,7 +898,7 @@ fn plan(
     floor_source
         .warnings
         .iter()
-        .for_each(|w| eprintln!("warning: {w}"));
+        .for_each(|w| eprintln!("warning: {}", printable(w)));
     let provenance = shoal::Provenance {
         scenario_source: source,
         overrides,
@@ -934,7 +940,7 @@ fn plan(
     let check = shoal::check::check_plan(&written, &floor);
     let files = set.commit(check.passed())?;
     for w in &written.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", printable(w));
     }
     if how.json {
         println!("{}", json_summary(&written, out, &files, &check));
@@ -1074,7 +1080,7 @@ fn compare(
             r.wall_s,
             match r.error.is_empty() {
                 true => String::new(),
-                false => format!(" ({})", r.error),
+                false => format!(" ({})", printable(&r.error)),
             }
         );
         if let (true, Some(plan)) = (keep_plans, &planned.plan) {

@@ -392,7 +392,8 @@ impl CheckReport {
                 names.join(", ")
             );
         }
-        out
+        // the places and problems quote the plan file (statuses, method, format)
+        crate::report::printable_lines(&out).into_owned()
     }
 }
 

@@ -229,7 +229,18 @@ fn footprint(frame: &LocalFrame, n: &Lattice) -> Option<[f64; 4]> {
 }
 
 impl fmt::Display for GridInfo {
+    /// The description, its names from the file (path, driver, CRS citation) made printable
+    /// ([`crate::report::printable_lines`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut text = String::new();
+        self.describe(&mut text)?;
+        f.write_str(&crate::report::printable_lines(&text))
+    }
+}
+
+impl GridInfo {
+    fn describe(&self, f: &mut String) -> fmt::Result {
+        use fmt::Write as _;
         let n = &self.native;
         let format = match (self.format, &self.driver) {
             (GridFormat::EsriAscii, _) => "ESRI ASCII grid".to_string(),
