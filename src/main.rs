@@ -92,6 +92,15 @@ enum Command {
         /// Check against this seafloor grid instead of the one the plan names.
         #[arg(long)]
         seafloor: Option<PathBuf>,
+        /// Hold the plan to the limits of this scenario file (speeds, turn rate, clearances,
+        /// acoustic ranges) instead of those the plan records; its team size, steps, step length
+        /// and windows must be the plan's.
+        #[arg(long, value_name = "FILE")]
+        scenario: Option<PathBuf>,
+        /// Override one limit, e.g. --set auv.max_speed=1.5 (repeatable): over --scenario, or
+        /// over the scenario the plan records.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
     },
     /// Write one self-contained HTML file showing a plan in 3D (opens offline in a browser).
     View {
@@ -403,33 +412,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 .with_context(|| format!("plotting {}", plan.display()))?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Check { plan, seafloor } => {
-            let p = shoal::output::read_plan(&plan)?;
-            let floor = shoal::check::load_floor(&p, seafloor.as_deref())
-                .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
-            let report = shoal::check::check_plan(&p, &floor);
-            print!("{}", report.table());
-            for w in &p.warnings {
-                eprintln!("warning: {}", printable(w));
-            }
-            let name = plan.display().to_string();
-            let name = printable(&name);
-            if report.passed() {
-                let unconverged = p.unconverged_stages();
-                if unconverged == 0 {
-                    println!("{name}: every constraint holds");
-                } else {
-                    println!(
-                        "{name}: every constraint holds, but {unconverged} stage(s) did not \
-                         converge: feasible, not optimal"
-                    );
-                }
-                Ok(ExitCode::SUCCESS)
-            } else {
-                println!("{name}: VIOLATED (see FAIL rows)");
-                Ok(ExitCode::from(1))
-            }
-        }
+        Command::Check {
+            plan,
+            seafloor,
+            scenario,
+            set,
+        } => check(&plan, seafloor.as_deref(), scenario.as_deref(), &set),
         Command::View {
             plan,
             out,
@@ -627,6 +615,54 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 .for_each(|w| eprintln!("warning: {}", printable(w)));
             Ok(ExitCode::SUCCESS)
         }
+    }
+}
+
+/// `shoal check`: the plan against its floor, with the limits it records or those the user
+/// states (`--scenario`, `--set`).
+fn check(
+    plan: &Path,
+    seafloor: Option<&Path>,
+    scenario: Option<&Path>,
+    set: &[String],
+) -> Result<ExitCode> {
+    let p = shoal::output::read_plan(plan)?;
+    let floor = shoal::check::load_floor(&p, seafloor)
+        .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
+    let report = if scenario.is_none() && set.is_empty() {
+        shoal::check::check_plan(&p, &floor)
+    } else {
+        let stated = match scenario {
+            Some(file) => scenario::load(file, set)?,
+            None => scenario::with_overrides(&p.scenario, &plan.display().to_string(), set)?,
+        };
+        let file = scenario.map(|f| f.display().to_string());
+        let source = shoal::check::limits_source(file.as_deref(), set);
+        shoal::check::check_plan_against(&p, &floor, &stated, &source)?
+    };
+    let name = plan.display().to_string();
+    let name = printable(&name);
+    for line in report.limits.lines() {
+        println!("{}", printable(&line));
+    }
+    print!("{}", report.table());
+    for w in &p.warnings {
+        eprintln!("warning: {}", printable(w));
+    }
+    if report.passed() {
+        let unconverged = p.unconverged_stages();
+        if unconverged == 0 {
+            println!("{name}: every constraint holds");
+        } else {
+            println!(
+                "{name}: every constraint holds, but {unconverged} stage(s) did not converge: \
+                 feasible, not optimal"
+            );
+        }
+        Ok(ExitCode::SUCCESS)
+    } else {
+        println!("{name}: VIOLATED (see FAIL rows)");
+        Ok(ExitCode::from(1))
     }
 }
 
