@@ -668,8 +668,11 @@ pub const LIMITS: &[Limit] = &[
     },
 ];
 
+/// A setting's dotted key and its value in a scenario.
+pub type Setting = (&'static str, fn(&Scenario) -> f64);
+
 /// The settings that make a plan's shape: a scenario stating limits must have the plan's.
-pub const GEOMETRY_KEYS: &[(&str, fn(&Scenario) -> f64)] = &[
+pub const GEOMETRY_KEYS: &[Setting] = &[
     ("team.auvs", |s| s.team.auvs as f64),
     ("horizon.steps", |s| s.horizon.steps as f64),
     ("horizon.dt", |s| s.horizon.dt),

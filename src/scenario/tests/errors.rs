@@ -591,24 +591,61 @@ const EVERY_RULE: &[(&[&str], &str)] = &[
     (&["seafloor.file=\"floor.png\""], "seafloor.file"),
     (&["seafloor.values=\"depth\""], "seafloor.values"),
     (&["seafloor.values=\"height\""], "seafloor.values"),
-    (&["seafloor.file=\"a.asc\"", "seafloor.origin=[91, 0]"], "seafloor.origin"),
-    (&["seafloor.origin=[43, 5]"], "seafloor.origin"),
-    (&["seafloor.file=\"a.asc\"", "seafloor.crs=\"WGS84\""], "seafloor.crs"),
-    (&["seafloor.crs=\"EPSG:4326\""], "seafloor.crs"),
     (
-        &["seafloor.file=\"a.asc\"", "seafloor.origin=[43, 5]", "seafloor.crs=\"EPSG:32631\""],
+        &["seafloor.file=\"a.asc\"", "seafloor.origin=[91, 0]"],
         "seafloor.origin",
     ),
-    (&["seafloor.synthetic.size=[0, 100]"], "seafloor.synthetic.size"),
+    (&["seafloor.origin=[43, 5]"], "seafloor.origin"),
+    (
+        &["seafloor.file=\"a.asc\"", "seafloor.crs=\"WGS84\""],
+        "seafloor.crs",
+    ),
+    (&["seafloor.crs=\"EPSG:4326\""], "seafloor.crs"),
+    (
+        &[
+            "seafloor.file=\"a.asc\"",
+            "seafloor.origin=[43, 5]",
+            "seafloor.crs=\"EPSG:32631\"",
+        ],
+        "seafloor.origin",
+    ),
+    (
+        &["seafloor.synthetic.size=[0, 100]"],
+        "seafloor.synthetic.size",
+    ),
     (&["seafloor.synthetic.cell=0"], "seafloor.synthetic.cell"),
-    (&["seafloor.synthetic.size=[1e6, 100]"], "seafloor.synthetic.size"),
-    (&["seafloor.synthetic.base_depth=nan"], "seafloor.synthetic.base_depth"),
-    (&["seafloor.synthetic.slope=[0, inf]"], "seafloor.synthetic.slope"),
-    (&["seafloor.synthetic.seamounts=10001"], "seafloor.synthetic.seamounts"),
-    (&["seafloor.synthetic.valleys=10001"], "seafloor.synthetic.valleys"),
-    (&["seafloor.synthetic.relief=[2, 1]"], "seafloor.synthetic.relief"),
-    (&["seafloor.synthetic.radius=[0, 1]"], "seafloor.synthetic.radius"),
-    (&["seafloor.synthetic.depth_range=[-50, -140]"], "seafloor.synthetic.depth_range"),
+    (
+        &["seafloor.synthetic.size=[1e6, 100]"],
+        "seafloor.synthetic.size",
+    ),
+    (
+        &["seafloor.synthetic.base_depth=nan"],
+        "seafloor.synthetic.base_depth",
+    ),
+    (
+        &["seafloor.synthetic.slope=[0, inf]"],
+        "seafloor.synthetic.slope",
+    ),
+    (
+        &["seafloor.synthetic.seamounts=10001"],
+        "seafloor.synthetic.seamounts",
+    ),
+    (
+        &["seafloor.synthetic.valleys=10001"],
+        "seafloor.synthetic.valleys",
+    ),
+    (
+        &["seafloor.synthetic.relief=[2, 1]"],
+        "seafloor.synthetic.relief",
+    ),
+    (
+        &["seafloor.synthetic.radius=[0, 1]"],
+        "seafloor.synthetic.radius",
+    ),
+    (
+        &["seafloor.synthetic.depth_range=[-50, -140]"],
+        "seafloor.synthetic.depth_range",
+    ),
     (&["scp.max_iterations=0"], "scp.max_iterations"),
     (&["scp.tolerance=0"], "scp.tolerance"),
     (&["scp.step1_max_iterations=0"], "scp.step1_max_iterations"),
@@ -621,34 +658,73 @@ const EVERY_RULE: &[(&[&str], &str)] = &[
     (&["current.file_east=\"u.asc\""], "current.file_east"),
     (&["current.file_north=\"v.asc\""], "current.file_north"),
     (
-        &["current.file_east=\"u.png\"", "current.file_north=\"v.asc\""],
+        &[
+            "current.file_east=\"u.png\"",
+            "current.file_north=\"v.asc\"",
+        ],
         "current.file_east",
     ),
     (&["current.profile=[[10, 1], [5, 1]]"], "current.profile[1]"),
     (&["navigation.sample_period=0"], "navigation.sample_period"),
     (&["navigation.dvl_noise=-1"], "navigation.dvl_noise"),
     (&["navigation.dvl_scale=0.5"], "navigation.dvl_scale"),
-    (&["navigation.dvl_max_altitude=0"], "navigation.dvl_max_altitude"),
+    (
+        &["navigation.dvl_max_altitude=0"],
+        "navigation.dvl_max_altitude",
+    ),
     (&["navigation.heading_noise=-1"], "navigation.heading_noise"),
     (&["navigation.heading_bias=1"], "navigation.heading_bias"),
     (&["navigation.depth_noise=-1"], "navigation.depth_noise"),
     (&["navigation.gps_noise=0"], "navigation.gps_noise"),
     (&["navigation.initial_noise=0"], "navigation.initial_noise"),
-    (&["navigation.acoustic_period=0"], "navigation.acoustic_period"),
-    (&["navigation.acoustic_period=2.5"], "navigation.acoustic_period"),
+    (
+        &["navigation.acoustic_period=0"],
+        "navigation.acoustic_period",
+    ),
+    (
+        &["navigation.acoustic_period=2.5"],
+        "navigation.acoustic_period",
+    ),
     (&["navigation.sound_speed=0"], "navigation.sound_speed"),
     (&["navigation.range_noise=0"], "navigation.range_noise"),
-    (&["navigation.packet_success=0"], "navigation.packet_success"),
+    (
+        &["navigation.packet_success=0"],
+        "navigation.packet_success",
+    ),
     (&["navigation.range_falloff=0"], "navigation.range_falloff"),
-    (&["navigation.estimate_biases=2"], "navigation.estimate_biases"),
+    (
+        &["navigation.estimate_biases=2"],
+        "navigation.estimate_biases",
+    ),
     (&["simulation.step=1"], "simulation.step"),
     (&["simulation.step=0.15"], "simulation.step"),
     (&["sampling.samples=0"], "sampling.samples"),
     (&["sampling.tree_budget=0"], "sampling.tree_budget"),
     (&["sampling.attempts=0"], "sampling.attempts"),
-    (&["initial.usv=[inf, 0]", "team.auvs=1", "initial.auvs=[[0, 0, -1]]"], "initial.usv"),
-    (&["team.auvs=2", "initial.usv=[0, 0]", "initial.auvs=[[0, 0, -1]]"], "initial.auvs"),
-    (&["team.auvs=1", "initial.usv=[0, 0]", "initial.auvs=[[0, 0, 1]]"], "initial.auvs[0]"),
+    (
+        &[
+            "initial.usv=[inf, 0]",
+            "team.auvs=1",
+            "initial.auvs=[[0, 0, -1]]",
+        ],
+        "initial.usv",
+    ),
+    (
+        &[
+            "team.auvs=2",
+            "initial.usv=[0, 0]",
+            "initial.auvs=[[0, 0, -1]]",
+        ],
+        "initial.auvs",
+    ),
+    (
+        &[
+            "team.auvs=1",
+            "initial.usv=[0, 0]",
+            "initial.auvs=[[0, 0, 1]]",
+        ],
+        "initial.auvs[0]",
+    ),
 ];
 
 /// What a message must say besides the key: what is allowed, as the word or as a range.
@@ -688,7 +764,12 @@ fn regression_every_validation_error_names_its_key_and_what_is_allowed() {
             bad.push(format!("{overrides:?} ({key}): {msg}"));
         }
     }
-    assert!(bad.is_empty(), "{} messages:\n{}", bad.len(), bad.join("\n"));
+    assert!(
+        bad.is_empty(),
+        "{} messages:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
 }
 
 /// The integer ranges the deserialiser's errors name are the ones `validate` checks.
@@ -705,7 +786,12 @@ fn integer_ranges_agree_with_validate() {
             assert!(!ok(hi + 1), "{key} = {}", hi + 1);
         }
         // a negative value names the range
-        let e = default_with(&[format!("{key}=-1")]).unwrap_err().to_string();
-        assert!(e.contains(&super::validate::integer_text(key).unwrap()), "{e}");
+        let e = default_with(&[format!("{key}=-1")])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&super::validate::integer_text(key).unwrap()),
+            "{e}"
+        );
     }
 }
