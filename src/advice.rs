@@ -7,6 +7,8 @@
 //!   [`BARELY_MOVES`] of the way a formation could go, i.e. the team's terms outweigh the USV's.
 //! - The grid's edge: a vehicle comes within one step's travel of the edge of the seafloor
 //!   grid, which the plan cannot cross; a long mission then turns along it or stops.
+//! - Implausible values: a setting far outside what a REMUS 100-class vehicle, its modem or the
+//!   paper uses, most likely a unit slip ([`crate::scenario::plausible`]).
 //! - More AUVs than lanes: every AUV stays within d_max of the USV (C1_5), so a window's
 //!   swaths lie in a corridor 2·d_max wide; a team of more than 2·d_max / swath AUVs overlaps
 //!   lanes already swept, and a window explores little more than a smaller team would.
@@ -21,7 +23,8 @@ pub const BARELY_MOVES: f64 = 0.1;
 
 /// Every warning of a plan's windows, in window order.
 pub fn warnings(windows: &[Window], s: &Scenario, floor: &Seafloor) -> Vec<String> {
-    let mut out: Vec<String> = more_auvs_than_lanes(s).into_iter().collect();
+    let mut out = crate::scenario::plausible::warnings(s);
+    out.extend(more_auvs_than_lanes(s));
     out.extend(courses_unused(s));
     out.extend(unconverged(windows, s));
     for w in windows {

@@ -3,6 +3,7 @@
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use shoal::report::{printable, printable_lines};
 use shoal::scenario::{self, Scenario};
 use shoal::Progress;
 use std::path::{Path, PathBuf};
@@ -92,6 +93,15 @@ enum Command {
         /// Check against this seafloor grid instead of the one the plan names.
         #[arg(long)]
         seafloor: Option<PathBuf>,
+        /// Hold the plan to the limits of this scenario file (speeds, turn rate, clearances,
+        /// acoustic ranges) instead of those the plan records; its team size, steps, step length
+        /// and windows must be the plan's.
+        #[arg(long, value_name = "FILE")]
+        scenario: Option<PathBuf>,
+        /// Override one limit, e.g. --set auv.max_speed=1.5 (repeatable): over --scenario, or
+        /// over the scenario the plan records.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
     },
     /// Write one self-contained HTML file showing a plan in 3D (opens offline in a browser).
     View {
@@ -321,7 +331,7 @@ fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {}", error_chain(&e));
+            eprintln!("error: {}", printable_lines(&error_chain(&e)));
             ExitCode::from(2)
         }
     }
@@ -403,32 +413,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 .with_context(|| format!("plotting {}", plan.display()))?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Check { plan, seafloor } => {
-            let p = shoal::output::read_plan(&plan)?;
-            let floor = shoal::check::load_floor(&p, seafloor.as_deref())
-                .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
-            let report = shoal::check::check_plan(&p, &floor);
-            print!("{}", report.table());
-            for w in &p.warnings {
-                eprintln!("warning: {w}");
-            }
-            if report.passed() {
-                let unconverged = p.unconverged_stages();
-                if unconverged == 0 {
-                    println!("{}: every constraint holds", plan.display());
-                } else {
-                    println!(
-                        "{}: every constraint holds, but {unconverged} stage(s) did not \
-                         converge: feasible, not optimal",
-                        plan.display()
-                    );
-                }
-                Ok(ExitCode::SUCCESS)
-            } else {
-                println!("{}: VIOLATED (see FAIL rows)", plan.display());
-                Ok(ExitCode::from(1))
-            }
-        }
+        Command::Check {
+            plan,
+            seafloor,
+            scenario,
+            set,
+        } => check(&plan, seafloor.as_deref(), scenario.as_deref(), &set),
         Command::View {
             plan,
             out,
@@ -547,7 +537,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                         cell,
                     };
                     let g = shoal::seafloor::export_grid(&file, &opts)?;
-                    g.warnings.iter().for_each(|w| eprintln!("warning: {w}"));
+                    g.warnings
+                        .iter()
+                        .for_each(|w| eprintln!("warning: {}", printable(w)));
                     let notes = shoal::output::write_grid(&g.floor, &g.crs, None, &out)?;
                     let (lo, hi) = g.floor.z_range();
                     println!(
@@ -560,8 +552,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
                         g.floor.y0(),
                         g.floor.dx(),
                         g.floor.dy(),
-                        g.crs,
-                        g.crs_source
+                        printable(&g.crs.to_string()),
+                        printable(&g.crs_source.to_string())
                     );
                     notes
                 }
@@ -572,7 +564,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     source
                         .warnings
                         .iter()
-                        .for_each(|w| eprintln!("warning: {w}"));
+                        .for_each(|w| eprintln!("warning: {}", printable(w)));
                     let region = match (region, region_latlon, source.origin) {
                         (Some(r), _, _) => Some(r),
                         (_, Some(b), Some([lat, lon])) => {
@@ -619,9 +611,59 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let info =
                 shoal::seafloor::info_with_crs(&file, values_of(Some(&values)), crs.as_deref())?;
             print!("{info}");
-            info.warnings.iter().for_each(|w| eprintln!("warning: {w}"));
+            info.warnings
+                .iter()
+                .for_each(|w| eprintln!("warning: {}", printable(w)));
             Ok(ExitCode::SUCCESS)
         }
+    }
+}
+
+/// `shoal check`: the plan against its floor, with the limits it records or those the user
+/// states (`--scenario`, `--set`).
+fn check(
+    plan: &Path,
+    seafloor: Option<&Path>,
+    scenario: Option<&Path>,
+    set: &[String],
+) -> Result<ExitCode> {
+    let p = shoal::output::read_plan(plan)?;
+    let floor = shoal::check::load_floor(&p, seafloor)
+        .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
+    let report = if scenario.is_none() && set.is_empty() {
+        shoal::check::check_plan(&p, &floor)
+    } else {
+        let stated = match scenario {
+            Some(file) => scenario::load(file, set)?,
+            None => scenario::with_overrides(&p.scenario, &plan.display().to_string(), set)?,
+        };
+        let file = scenario.map(|f| f.display().to_string());
+        let source = shoal::check::limits_source(file.as_deref(), set);
+        shoal::check::check_plan_against(&p, &floor, &stated, &source)?
+    };
+    let name = plan.display().to_string();
+    let name = printable(&name);
+    for line in report.limits.lines() {
+        println!("{}", printable(&line));
+    }
+    print!("{}", report.table());
+    for w in &p.warnings {
+        eprintln!("warning: {}", printable(w));
+    }
+    if report.passed() {
+        let unconverged = p.unconverged_stages();
+        if unconverged == 0 {
+            println!("{name}: every constraint holds");
+        } else {
+            println!(
+                "{name}: every constraint holds, but {unconverged} stage(s) did not converge: \
+                 feasible, not optimal"
+            );
+        }
+        Ok(ExitCode::SUCCESS)
+    } else {
+        println!("{name}: VIOLATED (see FAIL rows)");
+        Ok(ExitCode::from(1))
     }
 }
 
@@ -663,7 +705,7 @@ fn simulate(
     let record = shoal::sim::monte_carlo(&p, &name, &floor, seed, runs)?;
     let out = out.unwrap_or_else(|| base_dir(Some(plan)).join("sim.json"));
     shoal::sim::write(&record, &out)?;
-    print!("{}", shoal::sim::summary::table(&record));
+    print!("{}", printable_lines(&shoal::sim::summary::table(&record)));
     if figures {
         let dir = base_dir(Some(&out)).join("figures");
         let files = shoal::figures::write_sim(&p, &floor, &record, &dir)
@@ -909,7 +951,7 @@ fn plan_into(
     floor_source
         .warnings
         .iter()
-        .for_each(|w| eprintln!("warning: {w}"));
+        .for_each(|w| eprintln!("warning: {}", printable(w)));
     let provenance = shoal::Provenance {
         scenario_source: source,
         overrides,
@@ -965,7 +1007,7 @@ fn plan_into(
     let files = set.commit(Some(check.passed()))?;
     let cut_short = written.windows.len() < s.windows;
     for w in &written.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", printable(w));
     }
     if how.json {
         println!("{}", json_summary(&written, out, &files, &check));
@@ -1185,7 +1227,7 @@ fn compare(
             r.wall_s,
             match r.error.is_empty() {
                 true => String::new(),
-                false => format!(" ({})", r.error),
+                false => format!(" ({})", printable(&r.error)),
             }
         );
         match bar.is_hidden() {

@@ -73,7 +73,8 @@ impl ExploredStrips {
     /// Area, km²: c · Σ (hi − lo) / 10⁶.
     pub fn area_km2(&self) -> f64 {
         let len: f64 = self.rows.values().flatten().map(|i| i[1] - i[0]).sum();
-        len * self.c * 1e-6
+        // a float sum of nothing is −0.0: + 0.0 makes an empty set's area +0
+        len * self.c * 1e-6 + 0.0
     }
 
     /// Adds `other`. Panics if the strips differ (different heights).
@@ -427,6 +428,15 @@ mod tests {
         swath_width: 50.0,
         survey_altitude: 15.0,
     };
+
+    /// Regression: a plan whose AUVs never come down to survey altitude printed "explored
+    /// -0.000 km²" (a float sum of nothing is −0.0).
+    #[test]
+    fn regression_nothing_explored_is_zero_not_negative_zero() {
+        let area = ExploredStrips::new(strip_height(50.0)).area_km2();
+        assert!(area == 0.0 && area.is_sign_positive(), "{area}");
+        assert_eq!(format!("{area:.3}"), "0.000");
+    }
 
     /// Every waypoint at survey altitude (for the geometry tests, which have no floor).
     fn everywhere(_: [f64; 3]) -> bool {

@@ -540,3 +540,112 @@ fn regression_an_interrupted_compare_writes_its_finished_runs() {
     );
     assert!(!dir.join("compare.png").exists());
 }
+
+/// Regression: `shoal check` trusted the limits recorded in the plan. `--scenario FILE` and
+/// `--set KEY=VALUE` state the vehicle's own: the report says which limits it used and names
+/// the stated and the recorded value where they differ; a different team size is refused.
+#[test]
+fn regression_check_holds_the_plan_to_the_limits_the_user_states() {
+    let (dir, code, out, err) = plan_cli(
+        "check-limits",
+        &["-q", "--set", "team.auvs=1", "--set", "horizon.steps=3"],
+    );
+    assert_eq!(code, 0, "{out}\n{err}");
+    let plan = dir.join("plan.json");
+    let mission = dir.join("mission.toml");
+    let (code, _, _) = common::run(shoal().arg("init").arg(&mission));
+    assert_eq!(code, 0);
+    let check = |args: &[&str]| common::run(shoal().arg("check").arg(&plan).args(args));
+
+    let (code, out, _) = check(&[]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.starts_with("limits: as recorded in the plan\n"),
+        "{out}"
+    );
+
+    // the AUV's limit of the user's vehicle: 0.5 m/s; the plan flew faster
+    let m = mission.to_str().unwrap();
+    let (code, out, _) = check(&[
+        "--scenario",
+        m,
+        "--set",
+        "team.auvs=1",
+        "--set",
+        "horizon.steps=3",
+        "--set",
+        "auv.max_speed=0.5",
+    ]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.starts_with(&format!(
+            "limits: from {m} with --set team.auvs=1 --set horizon.steps=3 --set \
+             auv.max_speed=0.5\n  auv.max_speed = 0.5 (stated), 2 as recorded in the plan\n"
+        )),
+        "{out}"
+    );
+    let row = out
+        .lines()
+        .find(|l| l.starts_with("C1_7 AUV speed"))
+        .unwrap();
+    assert!(row.ends_with("FAIL"), "{row}");
+
+    // --set alone applies over the plan's recorded scenario
+    let (code, out, _) = check(&["--set", "auv.max_speed=0.5"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.starts_with("limits: as recorded in the plan with --set auv.max_speed=0.5\n"),
+        "{out}"
+    );
+    // a stated limit the plan keeps
+    let (code, out, _) = check(&["--set", "acoustic.max_range=1000"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("  acoustic.max_range = 1000 (stated), 400 as recorded in the plan\n"),
+        "{out}"
+    );
+
+    // the default scenario's 5 AUVs are not the plan's 1: refused, naming both
+    let (code, _, err) = check(&["--scenario", m]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("give team.auvs = 5, but the plan was made with team.auvs = 1"),
+        "{err}"
+    );
+    // a bad override names itself
+    let (code, _, err) = check(&["--set", "auv.max_speed=-1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--set auv.max_speed=-1"), "{err}");
+}
+
+/// Regression: `shoal check` echoed the terminal escape codes of a plan's warnings (and of its
+/// recorded statuses) to the terminal. They are printed escaped, visibly.
+#[test]
+fn regression_check_escapes_terminal_codes_from_the_plan() {
+    let (dir, code, out, err) = plan_cli(
+        "check-escapes",
+        &["-q", "--set", "team.auvs=1", "--set", "horizon.steps=2"],
+    );
+    assert_eq!(code, 0, "{out}\n{err}");
+    let plan = dir.join("plan.json");
+    let mut json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&plan).unwrap()).unwrap();
+    json["warnings"] = serde_json::json!(["\u{1b}[2J\u{1b}]0;owned\u{7}cleared\r\u{202e}txt"]);
+    json["windows"][0]["final"]["status"] = serde_json::json!("\u{1b}[32mconverged");
+    std::fs::write(&plan, serde_json::to_string(&json).unwrap()).unwrap();
+    let (code, out, err) = common::run(shoal().arg("check").arg(&plan));
+    assert_eq!(code, 1, "{out}\n{err}");
+    for text in [&out, &err] {
+        assert!(
+            !text
+                .chars()
+                .any(|c| c.is_control() && c != '\n' || c == '\u{202e}'),
+            "{text:?}"
+        );
+    }
+    assert!(
+        err.contains("warning: \\u{1b}[2J\\u{1b}]0;owned\\u{7}cleared\\u{d}\\u{202e}txt"),
+        "{err}"
+    );
+    assert!(out.contains("\\u{1b}[32mconverged"), "{out}");
+}

@@ -248,3 +248,91 @@ fn cli_seafloor_info_and_export() {
     assert_eq!(code, 0);
     assert!(stdout.contains("shoal local tangent plane"), "{stdout}");
 }
+
+/// The origin `shoal seafloor info FILE` suggests, as [lat, lon] (or [x, y]), parsed from its
+/// "origin" line as printed.
+fn suggested_origin(file: &Path) -> [f64; 2] {
+    let (code, stdout, stderr) = run(shoal().args(["seafloor", "info"]).arg(file));
+    assert_eq!(code, 0, "{stderr}");
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("origin"))
+        .unwrap_or_else(|| panic!("no origin line:\n{stdout}"));
+    let inside = line
+        .rsplit_once('[')
+        .and_then(|(_, r)| r.split_once(']'))
+        .map(|(v, _)| v)
+        .unwrap_or_else(|| panic!("{line}"));
+    let v: Vec<f64> = inside
+        .split(',')
+        .map(|x| x.trim().parse().unwrap())
+        .collect();
+    [v[0], v[1]]
+}
+
+/// Whether `shoal plan` starts from the scenario `s`: its floor loads and the start (the USV at
+/// the frame's origin, the AUVs drawn about it) passes the planner's start check.
+fn plan_starts(s: &Scenario) -> Result<(), String> {
+    let (floor, _) = scenario_floor(s, Path::new("")).map_err(|e| e.to_string())?;
+    let keep_out = floor.keep_out();
+    let init = shoal::mission::initial_state(s, &floor, &keep_out).map_err(|e| e.to_string())?;
+    let start = shoal::trajectory::Start {
+        usv: init.usv,
+        auvs: init.auvs,
+    };
+    shoal::mission::check_start(s, &floor, &keep_out, &start, 0).map_err(|e| e.to_string())
+}
+
+/// Regression: on a geographic grid whose centre is land, `shoal seafloor info` suggested the
+/// water node nearest the centre, which touches the island's cells, and `shoal plan` refused
+/// it ("is on land", "in a grid cell that touches land"). The suggestion is now a point plan
+/// accepts, for a geographic and for a projected grid.
+#[test]
+fn regression_the_origin_seafloor_info_suggests_is_one_plan_accepts() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, mut z, nd) = geographic();
+    // an island under the grid centre (node (70, 50)), a lagoon of one water node inside it
+    for j in 46..=54 {
+        for i in 66..=74 {
+            z[j * l.nx + i] = 2.0;
+        }
+    }
+    z[50 * l.nx + 72] = -20.0;
+    let f = tif(
+        dir.path(),
+        "island.tif",
+        (&l, &z, &nd),
+        &WGS84,
+        SampleType::Float32,
+        strips(TiffCompression::None),
+    );
+    let [lat, lon] = suggested_origin(&f);
+    let origin = format!("seafloor.origin=[{lat}, {lon}]");
+    let s = small(&f, &[&origin]);
+    plan_starts(&s).unwrap_or_else(|e| panic!("{origin}: {e}"));
+    // the centre itself is refused, as before
+    assert!(plan_starts(&small(&f, &[])).is_err());
+
+    // a projected grid: the suggested [initial] usv
+    let (l, mut z, nd) = survey();
+    for j in 12..=18 {
+        for i in 17..=23 {
+            z[j * l.nx + i] = 3.0; // land under the centre node (20, 15)
+        }
+    }
+    let f = tif(
+        dir.path(),
+        "utm.tif",
+        (&l, &z, &nd),
+        &UTM,
+        SampleType::Int32,
+        strips(TiffCompression::None),
+    );
+    let [x, y] = suggested_origin(&f);
+    let mut s = small(&f, &["auv.max_speed=0.5", "usv.max_speed=0.3"]);
+    s.initial = Some(scenario::Initial {
+        usv: [x, y],
+        auvs: Vec::new(),
+    });
+    plan_starts(&s).unwrap_or_else(|e| panic!("usv = [{x}, {y}]: {e}"));
+}

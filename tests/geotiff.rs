@@ -524,8 +524,9 @@ fn regression_a_mostly_land_grid_is_not_only_called_a_depth_grid() {
 }
 
 /// Regression (issue 13): `seafloor info` suggested the centre of a coastal grid as the
-/// mission's origin without saying it is on land. It now names the nearest water node and
-/// how far it is; a grid whose centre is water keeps the centre.
+/// mission's origin without saying it is on land. It now names the nearest node a plan can
+/// start from (water all round, clear of the cells that touch land) and how far it is; a grid
+/// whose centre is open water keeps the centre.
 #[test]
 fn regression_info_suggests_the_nearest_water_node_for_a_land_centre() {
     let dir = tempfile::tempdir().unwrap();
@@ -544,11 +545,16 @@ fn regression_info_suggests_the_nearest_water_node_for_a_land_centre() {
     );
     let i = info(&p, Values::Elevation).unwrap();
     let ([x, y], d) = i.water_origin.expect("a water node");
-    assert_eq!([x, y], [l.x0 + 24.0 * l.dx, l.y0 + 15.0 * l.dy]);
-    assert!((d - 80.0).abs() < 1e-9, "{d}");
+    // column 24 is water but its cells touch the land of column 23: three nodes in
+    assert_eq!([x, y], [l.x0 + 27.0 * l.dx, l.y0 + 15.0 * l.dy]);
+    assert!((d - 140.0).abs() < 1e-9, "{d}");
+    assert!(!i.centre_clear);
     let text = i.to_string();
     assert!(
-        text.contains("the grid centre is on land or NODATA; the nearest water node is x = 500490.0, y = 4700387.5 m, 80 m from it"),
+        text.contains(
+            "the grid centre is on land or NODATA, or next to it; the nearest node a plan can \
+             start from is x = 500550.0, y = 4700387.5 m, 140 m from it"
+        ),
         "{text}"
     );
     // the survey grid's centre is water: no other suggestion

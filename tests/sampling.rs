@@ -174,6 +174,78 @@ fn waypoints_that_do_not_fit_are_refused_naming_the_field() {
     assert!(err.contains("shoal-waypoints/1"), "{err}");
 }
 
+/// Regression: a waypoints file holding 1e308 planned, then failed to read its own plan back
+/// ("…/.shoal-staging-…/plan.json is not a shoal plan": a file already deleted). Waypoints
+/// that cannot be flown are refused up front, naming the file, the vehicle and the index.
+#[test]
+fn regression_waypoints_off_the_floor_are_refused_naming_file_vehicle_and_index() {
+    let sets = ["team.auvs=1", "horizon.steps=2"];
+    let s = scenario_with(&sets);
+    let floor = floor_of(&s);
+    let prov = Provenance::in_memory(&s);
+    let mpc = Planner::new(&s, &floor).run().unwrap();
+    let refused = |edit: &dyn Fn(&mut WaypointsFile)| {
+        let mut file = waypoints_of(&mpc);
+        edit(&mut file);
+        waypoints::plan(&s, &floor, &prov, &file, "w.json")
+            .unwrap_err()
+            .to_string()
+    };
+    let e = refused(&|f| f.windows[0].auvs[0][2][0] = 1e308);
+    assert!(
+        e.starts_with("w.json: windows[0].auvs[0][2]: AUV 0's waypoint k = 2, [1e308, ")
+            && e.contains("outside the seafloor grid, which covers x from"),
+        "{e}"
+    );
+    let e = refused(&|f| f.windows[0].auvs[0][1][2] = f64::NAN);
+    assert!(
+        e.starts_with("w.json: windows[0].auvs[0][1]: AUV 0's waypoint k = 1")
+            && e.contains("not finite"),
+        "{e}"
+    );
+    let e = refused(&|f| f.windows[0].auvs[0][1][2] = -1e7);
+    assert!(
+        e.contains("z = -10000000.0 m is beyond any floor; allowed is |z| ≤"),
+        "{e}"
+    );
+    let e = refused(&|f| f.windows[0].usv[2][1] = -1e9);
+    assert!(
+        e.starts_with("w.json: windows[0].usv[2]: the USV's waypoint k = 2")
+            && e.contains("outside the seafloor grid"),
+        "{e}"
+    );
+
+    // the command line: exit 2, the file named, no staging file, nothing written
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("far.json");
+    let mut file = waypoints_of(&mpc);
+    file.windows[0].auvs[0][2][0] = 1e308;
+    std::fs::write(&path, serde_json::to_string(&file).unwrap()).unwrap();
+    let out = dir.path().join("out");
+    let (code, _, stderr) = common::run(
+        shoal()
+            .args([
+                "plan",
+                "--no-plot",
+                "--set",
+                sets[0],
+                "--set",
+                sets[1],
+                "--waypoints",
+            ])
+            .arg(&path)
+            .arg("-o")
+            .arg(&out),
+    );
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("far.json: windows[0].auvs[0][2]: AUV 0's waypoint k = 2"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("staging"), "{stderr}");
+    assert!(!out.join("plan.json").exists());
+}
+
 #[test]
 fn cli_rrt_like_writes_a_plan_that_checks() {
     let dir = tempfile::tempdir().unwrap();

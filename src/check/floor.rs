@@ -52,7 +52,7 @@ impl Checker<'_> {
         let mut fw = Family::new("C2_2 floor clearance (waypoints)", "m", FLOOR_TOL);
         let mut fs = Family::new("C2_2 floor clearance (segments)", "m", FLOOR_TOL);
         let mut fo = Family::new("no obstacle (NODATA/land)", "samples", 0.0);
-        let eps = self.s.auv.floor_clearance;
+        let eps = self.limits.auv.floor_clearance;
         let r = self.resolution();
         let e = self.floor.extent();
         for (w, pre, _, n, a) in self.auv_paths() {

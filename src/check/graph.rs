@@ -375,7 +375,7 @@ impl Checker<'_> {
     // C5_2/C5_3 bands: 0 ≤ lo ≤ hi ≤ d_s
     // ------------------------------------------------------------------------------------
     fn bands(&self, f: &mut Family, w: usize, win: &Window) {
-        let d_s = self.s.acoustic.sonar_range;
+        let d_s = self.limits.acoustic.sonar_range;
         let l = &win.links;
         for (k, (bands, links)) in l.bands.iter().zip(&l.links).enumerate() {
             for (b, link) in bands.iter().zip(links) {
@@ -502,7 +502,7 @@ impl Checker<'_> {
     fn connectivity(&self, f: &mut Family, w: usize, win: &Window) {
         let st = &win.final_;
         let n = self.s.team.auvs;
-        let d_s = self.s.acoustic.sonar_range;
+        let d_s = self.limits.acoustic.sonar_range;
         // node 0 is the USV, node i + 1 is AUV i
         let who = |i: usize| i.checked_sub(1);
         for k in 0..self.steps(win) {

@@ -102,6 +102,7 @@ mod run;
 mod vehicles;
 
 use crate::plan::{ObjectiveTerms, Plan};
+use crate::scenario::Scenario;
 use crate::seafloor::{load, LoadOptions, Region, Seafloor, SeafloorError};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -244,6 +245,8 @@ pub struct CheckReport {
     pub plan_fingerprint: String,
     /// The fingerprint of the floor the plan was checked against (`Seafloor::fingerprint`).
     pub floor_fingerprint: String,
+    /// Whose limits the plan was held to, and where they differ from the plan's own.
+    pub limits: LimitsUsed,
 }
 
 impl CheckReport {
@@ -392,7 +395,8 @@ impl CheckReport {
                 names.join(", ")
             );
         }
-        out
+        // the places and problems quote the plan file (statuses, method, format)
+        crate::report::printable_lines(&out).into_owned()
     }
 }
 
@@ -522,8 +526,269 @@ pub fn load_floor(plan: &Plan, override_path: Option<&Path>) -> Result<Seafloor,
     Ok(floor)
 }
 
-/// Check every constraint of `plan` against `floor`. Never panics: malformed plans give a
-/// "structure" failure (and −∞ margins where a check cannot be evaluated).
+/// Check every constraint of `plan` against `floor`, with the limits recorded in the plan.
+/// Never panics: malformed plans give a "structure" failure (and −∞ margins where a check
+/// cannot be evaluated).
 pub fn check_plan(plan: &Plan, floor: &Seafloor) -> CheckReport {
-    run::run(plan, floor)
+    run::run(plan, floor, &plan.scenario, LimitsUsed::recorded())
+}
+
+/// [`check_plan`] with the limits ([`LIMITS`]) of `stated`, the user's scenario, in place of
+/// those the plan records: a plan whose recorded limits were raised by hand fails against the
+/// vehicle's real ones. `source` says where `stated` came from, as [`limits_source`] words it.
+/// The plan's geometry ([`GEOMETRY_KEYS`]: team size, steps, step length, windows) must be
+/// `stated`'s, otherwise [`LimitsError::Geometry`]; the other settings (weights, solver,
+/// seafloor, dynamics coefficients, seed) are the plan's own and are not used.
+pub fn check_plan_against(
+    plan: &Plan,
+    floor: &Seafloor,
+    stated: &Scenario,
+    source: &str,
+) -> Result<CheckReport, LimitsError> {
+    let recorded = &plan.scenario;
+    for (key, value) in GEOMETRY_KEYS {
+        let (a, b) = (value(stated), value(recorded));
+        if a != b {
+            return Err(LimitsError::Geometry {
+                from: source.to_string(),
+                key,
+                stated: a,
+                recorded: b,
+            });
+        }
+    }
+    let changed = LIMITS
+        .iter()
+        .filter_map(|l| {
+            let (a, b) = ((l.value)(stated), (l.value)(recorded));
+            (a != b).then_some(LimitChange {
+                key: l.key,
+                stated: a,
+                recorded: b,
+            })
+        })
+        .collect();
+    let ignored = differing_keys(stated, recorded)
+        .into_iter()
+        .filter(|k| !LIMITS.iter().any(|l| l.key == k))
+        .collect();
+    // the plan held to `stated`'s limits, everything else its own
+    let mut limits = recorded.clone();
+    for l in LIMITS {
+        (l.set)(&mut limits, (l.value)(stated));
+    }
+    let used = LimitsUsed {
+        source: source.to_string(),
+        changed,
+        ignored,
+    };
+    Ok(run::run(plan, floor, &limits, used))
+}
+
+/// How `shoal check` names the limits it used: "as recorded in the plan", "from mission.toml",
+/// and either with " with --set KEY=VALUE …" for the overrides.
+pub fn limits_source(file: Option<&str>, overrides: &[String]) -> String {
+    let base = match file {
+        Some(f) => format!("from {f}"),
+        None => RECORDED.to_string(),
+    };
+    let sets: Vec<String> = overrides.iter().map(|o| format!("--set {o}")).collect();
+    match sets.is_empty() {
+        true => base,
+        false => format!("{base} with {}", sets.join(" ")),
+    }
+}
+
+const RECORDED: &str = "as recorded in the plan";
+
+/// A limit of the plan: a bound the vehicles, their modems or the mission must keep, which a
+/// user may state for `shoal check --scenario/--set`.
+pub struct Limit {
+    /// The dotted scenario key.
+    pub key: &'static str,
+    /// The families it bounds.
+    pub families: &'static str,
+    /// Its value in a scenario.
+    pub value: fn(&Scenario) -> f64,
+    /// Set it in a scenario.
+    pub set: fn(&mut Scenario, f64),
+}
+
+/// The limits: vehicle speeds and turn rate, clearances, acoustic ranges. Everything else of a
+/// scenario either makes the plan's geometry ([`GEOMETRY_KEYS`]) or is how the plan was made
+/// (weights, solver, seafloor, the dynamics' coefficients, which the plan records as its model).
+pub const LIMITS: &[Limit] = &[
+    Limit {
+        key: "auv.max_speed",
+        families: "C1_7 AUV speed",
+        value: |s| s.auv.max_speed,
+        set: |s, v| s.auv.max_speed = v,
+    },
+    Limit {
+        key: "auv.max_heading_rate",
+        families: "C1_14 heading rate",
+        value: |s| s.auv.max_heading_rate,
+        set: |s, v| s.auv.max_heading_rate = v,
+    },
+    Limit {
+        key: "auv.min_heading_speed",
+        families: "C1_14 heading rate (applied above it)",
+        value: |s| s.auv.min_heading_speed,
+        set: |s, v| s.auv.min_heading_speed = v,
+    },
+    Limit {
+        key: "auv.floor_clearance",
+        families: "C2_2 floor clearance",
+        value: |s| s.auv.floor_clearance,
+        set: |s, v| s.auv.floor_clearance = v,
+    },
+    Limit {
+        key: "auv.surface_clearance",
+        families: "C1_4 underwater",
+        value: |s| s.auv.surface_clearance,
+        set: |s, v| s.auv.surface_clearance = v,
+    },
+    Limit {
+        key: "usv.max_speed",
+        families: "USV speed",
+        value: |s| s.usv.max_speed,
+        set: |s, v| s.usv.max_speed = v,
+    },
+    Limit {
+        key: "acoustic.sonar_range",
+        families: "C1_6 sonar range, link bands, acoustic connectivity",
+        value: |s| s.acoustic.sonar_range,
+        set: |s, v| s.acoustic.sonar_range = v,
+    },
+    Limit {
+        key: "acoustic.max_range",
+        families: "C1_5 range ≤ d_max",
+        value: |s| s.acoustic.max_range,
+        set: |s, v| s.acoustic.max_range = v,
+    },
+];
+
+/// A setting's dotted key and its value in a scenario.
+pub type Setting = (&'static str, fn(&Scenario) -> f64);
+
+/// The settings that make a plan's shape: a scenario stating limits must have the plan's.
+pub const GEOMETRY_KEYS: &[Setting] = &[
+    ("team.auvs", |s| s.team.auvs as f64),
+    ("horizon.steps", |s| s.horizon.steps as f64),
+    ("horizon.dt", |s| s.horizon.dt),
+    ("windows", |s| s.windows as f64),
+];
+
+/// A limit the user stated that differs from the plan's record.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitChange {
+    /// The dotted key.
+    pub key: &'static str,
+    /// The user's value, which the plan was checked against.
+    pub stated: f64,
+    /// The value the plan records.
+    pub recorded: f64,
+}
+
+/// Whose limits a check used.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitsUsed {
+    /// "as recorded in the plan", or where the stated ones came from ([`limits_source`]).
+    pub source: String,
+    /// The stated limits that differ from the plan's record.
+    pub changed: Vec<LimitChange>,
+    /// Other settings of the stated scenario that differ from the plan's and were not used
+    /// (not limits: the plan's own), as dotted keys.
+    pub ignored: Vec<String>,
+}
+
+impl LimitsUsed {
+    /// The plan's own limits.
+    pub fn recorded() -> LimitsUsed {
+        LimitsUsed {
+            source: RECORDED.to_string(),
+            changed: Vec::new(),
+            ignored: Vec::new(),
+        }
+    }
+
+    /// What `shoal check` prints above its table: "limits: …", then one line per stated limit
+    /// that differs from the recorded one, and the settings that were not used.
+    pub fn lines(&self) -> Vec<String> {
+        let mut out = vec![format!("limits: {}", self.source)];
+        if self.source != RECORDED && self.changed.is_empty() {
+            out.push("  (every limit as recorded in the plan)".to_string());
+        }
+        for c in &self.changed {
+            out.push(format!(
+                "  {} = {} (stated), {} as recorded in the plan",
+                c.key, c.stated, c.recorded
+            ));
+        }
+        if !self.ignored.is_empty() {
+            out.push(format!(
+                "  not limits, the plan's own (not used): {}",
+                self.ignored.join(", ")
+            ));
+        }
+        out
+    }
+}
+
+/// Why a plan cannot be checked against the limits a user states.
+#[derive(Debug, Error)]
+pub enum LimitsError {
+    /// The stated scenario's geometry is not the plan's.
+    #[error(
+        "the limits {from} give {key} = {stated}, but the plan was made with {key} = \
+         {recorded}: {key} shapes the plan (team size, steps, step length and windows must be \
+         the plan's), it is not a limit; state the plan's value or plan again"
+    )]
+    Geometry {
+        /// Where the stated limits came from ([`limits_source`]).
+        from: String,
+        /// The dotted key.
+        key: &'static str,
+        /// The stated value.
+        stated: f64,
+        /// The plan's value.
+        recorded: f64,
+    },
+}
+
+/// The dotted keys whose values differ between two scenarios (arrays compared whole).
+fn differing_keys(a: &Scenario, b: &Scenario) -> Vec<String> {
+    fn flatten(v: &serde_json::Value, prefix: &str, out: &mut Vec<(String, serde_json::Value)>) {
+        match v {
+            serde_json::Value::Object(map) => {
+                for (k, child) in map {
+                    let key = match prefix.is_empty() {
+                        true => k.clone(),
+                        false => format!("{prefix}.{k}"),
+                    };
+                    flatten(child, &key, out);
+                }
+            }
+            other => out.push((prefix.to_string(), other.clone())),
+        }
+    }
+    let leaves = |s: &Scenario| {
+        let mut out = Vec::new();
+        if let Ok(v) = serde_json::to_value(s) {
+            flatten(&v, "", &mut out);
+        }
+        out
+    };
+    let (la, lb) = (leaves(a), leaves(b));
+    let mut keys: Vec<String> = la
+        .iter()
+        .filter(|(k, v)| lb.iter().find(|(kb, _)| kb == k).map(|(_, vb)| vb) != Some(v))
+        .map(|(k, _)| k.clone())
+        .collect();
+    for (k, _) in &lb {
+        if !la.iter().any(|(ka, _)| ka == k) {
+            keys.push(k.clone());
+        }
+    }
+    keys
 }

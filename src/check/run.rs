@@ -116,7 +116,11 @@ fn stage_name(pre: &str) -> &'static str {
 
 pub(super) struct Checker<'a> {
     pub(super) plan: &'a Plan,
+    /// The plan's own scenario: its geometry, model, objective and recorded metrics.
     pub(super) s: &'a Scenario,
+    /// The scenario whose limits the plan is held to ([`super::LIMIT_KEYS`]): the plan's own
+    /// unless the user states others.
+    pub(super) limits: &'a Scenario,
     pub(super) floor: &'a Seafloor,
     /// K.
     pub(super) k: usize,
@@ -126,11 +130,17 @@ pub(super) struct Checker<'a> {
     structural_checks: usize,
 }
 
-pub(super) fn run(plan: &Plan, floor: &Seafloor) -> CheckReport {
+pub(super) fn run(
+    plan: &Plan,
+    floor: &Seafloor,
+    limits: &Scenario,
+    used: super::LimitsUsed,
+) -> CheckReport {
     let s = &plan.scenario;
     let mut c = Checker {
         plan,
         s,
+        limits,
         floor,
         k: s.horizon.steps,
         dt: s.horizon.dt,
@@ -169,6 +179,7 @@ pub(super) fn run(plan: &Plan, floor: &Seafloor) -> CheckReport {
         objectives,
         plan_fingerprint: plan.seafloor.fingerprint.clone(),
         floor_fingerprint: floor.fingerprint(),
+        limits: used,
     }
 }
 

@@ -108,14 +108,14 @@ impl Checker<'_> {
         let mut fa = Family::new("C1_7 AUV speed", "m/s", SPEED_TOL);
         for (w, pre, st) in self.stages() {
             for (k, u) in st.usv.input.iter().enumerate().take(self.k) {
-                fu.record(self.s.usv.max_speed - norm(u), || {
+                fu.record(self.limits.usv.max_speed - norm(u), || {
                     format!("window {w}, input k = {k}, {pre}USV: ‖U‖ = {}", norm(u))
                 });
             }
         }
         for (w, pre, _, n, a) in self.auv_paths() {
             for (k, v) in a.velocity.iter().enumerate().take(self.k.saturating_add(1)) {
-                fa.record(self.s.auv.max_speed - norm(v), || {
+                fa.record(self.limits.auv.max_speed - norm(v), || {
                     at(w, k, &format!("{pre}AUV {n}: ‖V‖ = {}", norm(v)))
                 });
             }
@@ -128,7 +128,7 @@ impl Checker<'_> {
     // ------------------------------------------------------------------------------------
     pub(super) fn underwater(&self) -> FamilyResult {
         let mut f = Family::new("C1_4 underwater", "m", LENGTH_TOL);
-        let limit = -self.s.auv.surface_clearance;
+        let limit = -self.limits.auv.surface_clearance;
         for (w, pre, _, n, a) in self.auv_paths() {
             for (k, p) in a.position.iter().enumerate().take(self.k.saturating_add(1)) {
                 f.record(limit - p[2], || {
@@ -145,7 +145,8 @@ impl Checker<'_> {
     pub(super) fn ranges(&self) -> Vec<FamilyResult> {
         let mut f5 = Family::new("C1_5 range ≤ d_max", "m", LENGTH_TOL);
         let mut f6 = Family::new("C1_6 sonar range at k = 0, K", "m", LENGTH_TOL);
-        let (d_max, d_s) = (self.s.acoustic.max_range, self.s.acoustic.sonar_range);
+        let a = &self.limits.acoustic;
+        let (d_max, d_s) = (a.max_range, a.sonar_range);
         for (w, pre, st, n, a) in self.auv_paths() {
             for k in 0..=self.k.min(a.position.len()) {
                 let (Some(p), Some(q)) = (a.position.get(k), st.usv.position.get(k)) else {
@@ -173,8 +174,8 @@ impl Checker<'_> {
             HEADING_TURN_TOL
         };
         let mut f = Family::new("C1_14 heading rate", "rad/s", tol);
-        let vmin = self.s.auv.min_heading_speed;
-        let max = self.s.auv.max_heading_rate;
+        let vmin = self.limits.auv.min_heading_speed;
+        let max = self.limits.auv.max_heading_rate;
         for (w, pre, _, n, a) in self.auv_paths() {
             for k in 1..=self.k.min(a.velocity.len()) {
                 let (Some(va), Some(vb)) = (a.velocity.get(k - 1), a.velocity.get(k)) else {

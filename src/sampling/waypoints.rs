@@ -2,7 +2,9 @@
 //! format `shoal-waypoints/1` (docs/baseline.md), gives every vehicle's waypoint at each step;
 //! the inputs and velocities follow from the vehicle model (ZOH: U\[k\] = (P\[k+1\] − P\[k\] −
 //! A_p V\[k\]) / B_p per axis, from the start's velocity), the graph and metrics as for the
-//! RRT-like baseline. The plan is written whatever it breaks: `shoal check` then says what.
+//! RRT-like baseline. The plan is written whatever it breaks (`shoal check` then says what),
+//! except waypoints that cannot be flown at all: a coordinate that is not finite, a point off
+//! the seafloor grid or beyond any depth is refused, naming the file, the vehicle and the index.
 //! This is how the OMPL reference (scripts/ompl_rrt_star.py) is checked and compared.
 
 use super::assemble::{window, Sampled};
@@ -121,7 +123,7 @@ pub fn plan(
     let mut track: Vec<[f64; 2]> = Vec::new();
     for (w, ww) in file.windows.iter().enumerate() {
         check_start(s, floor, keep_out, &start, w)?;
-        let t = trajectory(s, &auv, &usv, &start, ww)
+        let t = trajectory(s, floor, &auv, &usv, &start, ww)
             .map_err(|why| bad(format!("windows[{w}].{why}")))?;
         let chains: Vec<Vec<usize>> = (1..t.usv_p.len())
             .map(|k| {
@@ -169,10 +171,39 @@ fn notes(file: &WaypointsFile) -> String {
     }
 }
 
+/// Why waypoint `p` of `who` ("the USV", "AUV 2") at step `k` cannot be flown, if it
+/// cannot: a coordinate that is not finite, a point outside the seafloor grid (no plan leaves
+/// it, and the paths between waypoints are measured on it), or a depth beyond any floor's.
+fn waypoint_problem(floor: &Seafloor, who: &str, k: usize, p: &[f64]) -> Option<String> {
+    let at = || {
+        let parts: Vec<String> = p.iter().map(|c| format!("{c:?}")).collect();
+        format!("{who}'s waypoint k = {k}, [{}]", parts.join(", "))
+    };
+    if !p.iter().all(|c| c.is_finite()) {
+        return Some(format!("{}: a coordinate is not finite", at()));
+    }
+    if !floor.contains(p[0], p[1]) {
+        return Some(format!(
+            "{}: outside the seafloor grid, which covers {}; waypoints must lie over it",
+            at(),
+            floor.extent()
+        ));
+    }
+    let max = crate::seafloor::MAX_ABS_ELEVATION;
+    match p.get(2) {
+        Some(z) if z.abs() > max => Some(format!(
+            "{}: z = {z:?} m is beyond any floor; allowed is |z| ≤ {max} m",
+            at()
+        )),
+        _ => None,
+    }
+}
+
 /// The window's trajectory through the waypoints of `ww` from `start`, or what does not fit
 /// (the field, relative to the window).
 fn trajectory(
     s: &Scenario,
+    floor: &Seafloor,
     auv: &AuvModel,
     usv: &UsvModel,
     start: &Start,
@@ -189,9 +220,10 @@ fn trajectory(
     if ww.auvs.len() != n {
         return Err(format!("auvs: {} paths for team.auvs = {n}", ww.auvs.len()));
     }
-    let finite = |v: &[f64]| v.iter().all(|c| c.is_finite());
-    if !ww.usv.iter().all(|p| finite(p)) {
-        return Err("usv: a waypoint is not finite".into());
+    for (i, p) in ww.usv.iter().enumerate() {
+        if let Some(why) = waypoint_problem(floor, "the USV", i, p) {
+            return Err(format!("usv[{i}]: {why}"));
+        }
     }
     let near = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-6);
     if !near(&ww.usv[0], &start.usv) {
@@ -214,8 +246,10 @@ fn trajectory(
                 k + 1
             ));
         }
-        if !path.iter().all(|p| finite(p)) {
-            return Err(format!("auvs[{a}]: a waypoint is not finite"));
+        for (i, p) in path.iter().enumerate() {
+            if let Some(why) = waypoint_problem(floor, &format!("AUV {a}"), i, p) {
+                return Err(format!("auvs[{a}][{i}]: {why}"));
+            }
         }
         if !near(&path[0], &st.position) {
             return Err(format!(

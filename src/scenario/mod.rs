@@ -10,6 +10,7 @@
 use serde::{Deserialize, Serialize};
 
 mod load;
+pub mod plausible;
 mod sampling;
 mod schema;
 mod sim;

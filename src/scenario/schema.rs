@@ -262,6 +262,9 @@ fn describe(key: &str, item: &Item) -> String {
         let quoted: Vec<String> = vals.iter().map(|v| format!("\"{v}\"")).collect();
         return format!("one of {}", quoted.join(", "));
     }
+    if let Some(range) = super::validate::integer_text(key) {
+        return range;
+    }
     match item.as_value() {
         Some(v) => describe_value(v),
         None => "a table (section) of keys".to_string(),

@@ -41,6 +41,35 @@ pub const MAX_FEATURES: usize = 10_000;
 /// Most first courses `usv.courses` may ask for (one every 5°).
 pub const MAX_COURSES: usize = 72;
 
+/// The range of every integer key, as [`validate`] checks it: (dotted key, least, largest).
+/// The deserialiser's errors for such a key (a negative or fractional number) name the range
+/// from here rather than "a non-negative integer".
+pub(crate) const INTEGER_RANGES: &[(&str, u64, Option<u64>)] = &[
+    ("seed", 0, None),
+    ("windows", 1, None),
+    ("team.auvs", 1, Some(MAX_AUVS as u64)),
+    ("horizon.steps", 1, Some(MAX_STEPS as u64)),
+    ("acoustic.los_rounds", 1, Some(100)),
+    ("usv.courses", 1, Some(MAX_COURSES as u64)),
+    ("seafloor.synthetic.seamounts", 0, Some(MAX_FEATURES as u64)),
+    ("seafloor.synthetic.valleys", 0, Some(MAX_FEATURES as u64)),
+    ("scp.max_iterations", 1, None),
+    ("scp.step1_max_iterations", 1, None),
+    ("sampling.samples", 1, Some(1000)),
+    ("sampling.tree_budget", 1, Some(100_000)),
+    ("sampling.attempts", 1, Some(100_000)),
+];
+
+/// "an integer from 1 to 64" or "an integer ≥ 1": what the integer key `key` allows, if it is
+/// one of [`INTEGER_RANGES`].
+pub(crate) fn integer_text(key: &str) -> Option<String> {
+    let (_, lo, hi) = INTEGER_RANGES.iter().find(|(k, _, _)| *k == key)?;
+    Some(match hi {
+        Some(hi) => format!("an integer from {lo} to {hi}"),
+        None => format!("an integer ≥ {lo}"),
+    })
+}
+
 #[derive(Default)]
 struct Checker {
     out: Vec<Violation>,
@@ -335,7 +364,8 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         c.push(
             "seafloor.values",
             "\"depth\"".to_string(),
-            "applies to a grid file (seafloor.file); the synthetic floor is made of elevations"
+            "is allowed only with a grid file (seafloor.file): the synthetic floor is made of \
+             elevations, so leave it out (or \"elevation\")"
                 .to_string(),
             &["seafloor.file"],
         );
@@ -356,8 +386,8 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
             c.push(
                 "seafloor.origin",
                 arr(&o),
-                "applies to a geographic grid file (seafloor.file); the synthetic floor is \
-                 already in metres"
+                "is allowed only with a geographic grid file (seafloor.file): the synthetic \
+                 floor is already in metres, so leave it out"
                     .to_string(),
                 &["seafloor.file"],
             );
@@ -374,8 +404,8 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
             Ok(_) if s.seafloor.file.is_none() => c.push(
                 "seafloor.crs",
                 format!("{text:?}"),
-                "applies to a grid file (seafloor.file); the synthetic floor is already in \
-                 metres"
+                "is allowed only with a grid file (seafloor.file): the synthetic floor is \
+                 already in metres, so leave it out"
                     .to_string(),
                 &["seafloor.file"],
             ),
@@ -383,8 +413,9 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
                 "seafloor.origin",
                 arr(&s.seafloor.origin.unwrap_or_default()),
                 format!(
-                    "applies to a geographic grid; seafloor.crs = {text:?} is projected, and \
-                     its own coordinates (metres) are the planner's frame"
+                    "is allowed only with a geographic grid; seafloor.crs = {text:?} is \
+                     projected, and its own coordinates (metres) are the planner's frame, so \
+                     leave seafloor.origin out"
                 ),
                 &["seafloor.crs"],
             ),
@@ -592,7 +623,7 @@ fn sim(c: &mut Checker, s: &Scenario) {
             format!("{f:?}"),
             format!(
                 "needs {missing} too: the current's grid files come as a pair (its east and \
-                 north components), both or neither"
+                 north components); allowed are both or neither"
             ),
             &[missing],
         );

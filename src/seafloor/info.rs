@@ -3,7 +3,8 @@
 use super::crs::CrsSource;
 use super::geo::LocalFrame;
 use super::load::{
-    frame_for, sign_warning, Crs, GridFile, GridFormat, NodeWindow, OpenedGrid, Values,
+    frame_for, sign_warning, Crs, GridFile, GridFormat, LoadOptions, NodeWindow, OpenedGrid,
+    Region, Values,
 };
 use super::{Lattice, SeafloorError};
 use std::fmt;
@@ -44,10 +45,13 @@ pub struct GridInfo {
     /// The suggested mission origin: the grid's centre, [lat, lon] for a geographic grid,
     /// [x, y] in the grid's own metres otherwise.
     pub origin: [f64; 2],
-    /// When the centre node is land or NODATA (a coastal grid): the water node (data below sea
-    /// level) nearest to it, in the same form as `origin`, and its distance from the centre in
-    /// metres. None when the centre is water, or no water node lies within 2048 nodes of it.
+    /// When `shoal plan` would refuse to start at the centre (it is land or NODATA, or in a
+    /// cell that touches them: a coastal grid): the node nearest to it where a plan can start,
+    /// in the same form as `origin` (rounded as printed), and its distance from the centre in
+    /// metres. None when the centre will do, or no such node lies within 2048 nodes of it.
     pub water_origin: Option<([f64; 2], f64)>,
+    /// Whether a plan can start at the centre (the default origin of a geographic grid).
+    pub centre_clear: bool,
     /// Likely mistakes (the sign convention) and assumptions (a datum taken as WGS84); not
     /// part of the Display text.
     pub warnings: Vec<String>,
@@ -112,19 +116,22 @@ pub fn info_with_crs(
             Some([native.x0, native.x_max(), native.y0, native.y_max()]),
         ),
     };
-    let water_origin = if land + nodata == 0 {
+    let start = StartTest {
+        path,
+        values,
+        declared,
+        geographic: matches!(crs, Crs::Geographic { .. }),
+        reach: 4.0 * cell_m[0].max(cell_m[1]),
+    };
+    let centre_clear = land + nodata == 0 || start.accepts(None, centre);
+    let water_origin = if centre_clear {
         None
     } else {
-        nearest_water(&mut file, &native, sign, cell_m)?.map(|([x, y], d)| {
-            let at = match crs {
-                Crs::Geographic { .. } => [y, x], // [lat, lon]
-                _ => [x, y],
-            };
-            (at, d)
-        })
+        nearest_start(&mut file, &native, sign, cell_m, &start)?
     };
     Ok(GridInfo {
         water_origin,
+        centre_clear,
         path: name,
         format,
         driver,
@@ -143,20 +150,78 @@ pub fn info_with_crs(
     })
 }
 
-/// Half-sizes (nodes) of the windows about the centre node that `nearest_water` reads in
+/// Half-sizes (nodes) of the windows about the centre node that `nearest_start` reads in
 /// turn: at most 4097 × 4097 nodes are held at once.
 const WATER_SEARCH: [usize; 4] = [16, 128, 512, 2048];
 
-/// The water node (data, below sea level after `sign`) nearest the grid's centre node, as
-/// native (x, y), and its distance in metres (`cell_m`: metres per node step); None when the
-/// centre node is water or none lies within the largest window of `WATER_SEARCH`.
-fn nearest_water(
+/// A node suggested as a start has only water (data below sea level) within this many nodes
+/// of it, along each axis: its own cell, the cells around an obstacle cell that the planner's
+/// keep-out field rises over, and for a geographic grid the native cells that the metric
+/// resampling blends into the start's cell.
+const CLEAR_NODES: usize = 3;
+
+/// Most candidate nodes [`nearest_start`] loads the floor around before it gives up.
+const MAX_TRIES: usize = 32;
+
+/// Whether `shoal plan` starts at a point, decided as it decides it: the floor loaded around
+/// the point as the planner loads it (the same origin, CRS and sign convention), the point
+/// inside the grid, its cell free of NODATA and land, and the keep-out field there the floor
+/// itself, below sea level.
+struct StartTest<'a> {
+    path: &'a Path,
+    values: Values,
+    declared: Option<&'a str>,
+    geographic: bool,
+    /// Half-size of the area loaded around the point, metres.
+    reach: f64,
+}
+
+impl StartTest<'_> {
+    /// Whether a plan starts at `origin` ([lat, lon] of a geographic grid's frame, the USV at
+    /// its origin; None: the grid's centre) or, for another grid, at `at` ([x, y]).
+    fn accepts(&self, origin: Option<[f64; 2]>, at: [f64; 2]) -> bool {
+        let (origin, [x, y]) = match self.geographic {
+            true => (origin, [0.0, 0.0]),
+            false => (None, origin.unwrap_or(at)),
+        };
+        let r = self.reach;
+        let opts = LoadOptions {
+            values: self.values,
+            origin,
+            crs: self.declared.map(str::to_string),
+            region: Region::Area {
+                x_min: x - r,
+                x_max: x + r,
+                y_min: y - r,
+                y_max: y + r,
+            },
+        };
+        let Ok(loaded) = super::load(self.path, &opts) else {
+            return false;
+        };
+        let floor = loaded.floor;
+        let (Ok(z), Ok(field)) = (floor.elevation(x, y), floor.keep_out().elevation(x, y)) else {
+            return false;
+        };
+        floor.contains(x, y) && matches!(floor.obstacle(x, y), Ok(None)) && field == z && z < 0.0
+    }
+}
+
+/// The node nearest the grid's centre node where a plan can start ([`StartTest`]), as it is
+/// printed ([lat, lon] to 1e-6° for a geographic grid, [x, y] to 0.1 m otherwise), and its
+/// distance from the centre in metres (`cell_m`: metres per node step). Only nodes with
+/// nothing but water within [`CLEAR_NODES`] are tried, nearest first, at most [`MAX_TRIES`].
+/// None when no node within the largest window of `WATER_SEARCH` will do.
+fn nearest_start(
     file: &mut GridFile,
     n: &Lattice,
     sign: f64,
     cell_m: [f64; 2],
+    start: &StartTest,
 ) -> Result<Option<([f64; 2], f64)>, SeafloorError> {
     let (ic, jc) = ((n.nx - 1) / 2, (n.ny - 1) / 2);
+    let c = CLEAR_NODES;
+    let mut tried = std::collections::HashSet::new();
     for h in WATER_SEARCH {
         let (i0, j0) = (ic.saturating_sub(h), jc.saturating_sub(h));
         let (i1, j1) = ((ic + h).min(n.nx - 1), (jc + h).min(n.ny - 1));
@@ -167,34 +232,72 @@ fn nearest_water(
             ny: j1 - j0 + 1,
         };
         let (z, missing) = file.read(w)?;
-        let mut best: Option<(f64, usize, usize)> = None;
-        for (k, (&raw, &m)) in z.iter().zip(&missing).enumerate() {
-            let water = sign * raw < 0.0; // false for NaN
-            if m || !water {
-                continue;
-            }
-            let (i, j) = (i0 + k % w.nx, j0 + k / w.nx);
-            let d = ((i as f64 - ic as f64) * cell_m[0]).hypot((j as f64 - jc as f64) * cell_m[1]);
-            if best.map_or(true, |b| d < b.0) {
-                best = Some((d, i, j));
+        // prefix sums of the nodes that are not water: a box is clear when its sum is 0
+        let (wx, wy) = (w.nx, w.ny);
+        let mut dry = vec![0u32; (wx + 1) * (wy + 1)];
+        for j in 0..wy {
+            for i in 0..wx {
+                let k = j * wx + i;
+                let water = !missing[k] && sign * z[k] < 0.0; // false for NaN
+                dry[(j + 1) * (wx + 1) + i + 1] =
+                    u32::from(!water) + dry[j * (wx + 1) + i + 1] + dry[(j + 1) * (wx + 1) + i]
+                        - dry[j * (wx + 1) + i];
             }
         }
+        let clear = |i: usize, j: usize| {
+            // the box [i − c, i + c] × [j − c, j + c] in window coordinates, inside the window
+            if i < c || j < c || i + c >= wx || j + c >= wy {
+                return false;
+            }
+            let (a, b, p, q) = (i - c, j - c, i + c + 1, j + c + 1);
+            let at = |x: usize, y: usize| dry[y * (wx + 1) + x];
+            at(p, q) + at(a, b) == at(a, q) + at(p, b)
+        };
+        let mut candidates: Vec<(f64, usize, usize)> = Vec::new();
+        for j in 0..wy {
+            for i in 0..wx {
+                if clear(i, j) {
+                    let (gi, gj) = (i0 + i, j0 + j);
+                    let d = ((gi as f64 - ic as f64) * cell_m[0])
+                        .hypot((gj as f64 - jc as f64) * cell_m[1]);
+                    candidates.push((d, gi, gj));
+                }
+            }
+        }
+        candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.2, a.1).cmp(&(b.2, b.1))));
         let whole = w.nx == n.nx && w.ny == n.ny;
-        if let Some((d, i, j)) = best {
-            if d == 0.0 {
-                return Ok(None); // the centre is water
+        // nearer than any clear node this window cannot see (outside it, or within c of its
+        // edge), unless it sees everything there is to see
+        let bound = match whole || h == WATER_SEARCH[3] {
+            true => f64::INFINITY,
+            false => h.saturating_sub(c) as f64 * cell_m[0].min(cell_m[1]),
+        };
+        for (d, i, j) in candidates {
+            if d > bound || tried.len() >= MAX_TRIES {
+                break;
             }
-            // nearer than any node outside this window, or nothing left outside it
-            if d <= h as f64 * cell_m[0].min(cell_m[1]) || whole || h == WATER_SEARCH[3] {
-                let x = n.x0 + i as f64 * n.dx;
-                let y = n.y0 + j as f64 * n.dy;
-                return Ok(Some(([x, y], d)));
+            if !tried.insert((i, j)) {
+                continue;
             }
-        } else if whole {
+            let (x, y) = (n.x0 + i as f64 * n.dx, n.y0 + j as f64 * n.dy);
+            let at = match start.geographic {
+                true => [round_to(y, 1e6), round_to(x, 1e6)], // [lat, lon]
+                false => [round_to(x, 10.0), round_to(y, 10.0)],
+            };
+            if start.accepts(Some(at), at) {
+                return Ok(Some((at, d)));
+            }
+        }
+        if whole || tried.len() >= MAX_TRIES {
             return Ok(None);
         }
     }
     Ok(None)
+}
+
+/// `v` rounded to 1/`per` (as printed with log10(per) decimals).
+fn round_to(v: f64, per: f64) -> f64 {
+    (v * per).round() / per
 }
 
 /// The bounding box of the grid's boundary nodes in the frame; None if any lies beyond the
@@ -229,7 +332,18 @@ fn footprint(frame: &LocalFrame, n: &Lattice) -> Option<[f64; 4]> {
 }
 
 impl fmt::Display for GridInfo {
+    /// The description, its names from the file (path, driver, CRS citation) made printable
+    /// ([`crate::report::printable_lines`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut text = String::new();
+        self.describe(&mut text)?;
+        f.write_str(&crate::report::printable_lines(&text))
+    }
+}
+
+impl GridInfo {
+    fn describe(&self, f: &mut String) -> fmt::Result {
+        use fmt::Write as _;
         let n = &self.native;
         let format = match (self.format, &self.driver) {
             (GridFormat::EsriAscii, _) => "ESRI ASCII grid".to_string(),
@@ -344,8 +458,19 @@ impl fmt::Display for GridInfo {
             };
             return writeln!(
                 f,
-                "origin      the grid centre is on land or NODATA; the nearest water node is \
-                 {what}, {dist:.0} m from it: start there ({set})"
+                "origin      the grid centre is on land or NODATA, or next to it; the nearest \
+                 node a plan can start from is {what}, {dist:.0} m from it: start there ({set})"
+            );
+        }
+        if !self.centre_clear {
+            let set = match geographic {
+                true => "seafloor.origin",
+                false => "[initial] usv",
+            };
+            return writeln!(
+                f,
+                "origin      the grid centre is on land or NODATA, or next to it, and no node \
+                 a plan can start from was found near it: set {set} to a point over open water"
             );
         }
         if geographic {

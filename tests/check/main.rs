@@ -11,7 +11,9 @@
 mod graph;
 mod malformed;
 
-use shoal::check::{check_plan, load_floor, CheckError, CheckReport};
+use shoal::check::{
+    check_plan, check_plan_against, load_floor, CheckError, CheckReport, LimitChange, LimitsError,
+};
 use shoal::mission::FloorSource;
 use shoal::plan::{
     AuvPath, AuvState, InitialState, ModelRecord, ObjectiveTerms, Plan, Stage, UsvPath, Window,
@@ -426,6 +428,77 @@ fn usv_too_fast_fails_usv_speed_only() {
         .unwrap()
         .where_
         .contains("input k = 2"));
+}
+
+/// Regression: `shoal check` trusted the limits recorded in the plan, so a plan whose
+/// recorded auv.max_speed was raised by hand passed. Against the limits the user states it
+/// fails, the report names both values, and only the stated limits change (the USV's speed
+/// limit is also in the plan's model record, which stays the plan's own).
+#[test]
+fn regression_a_hand_raised_limit_fails_against_the_stated_one() {
+    let floor = flat();
+    let mission = spec(1).s; // V_max = 2 m/s, the USV's 1.5 m/s
+    let mut sp = spec(1);
+    let e = rates(&sp.s)[0];
+    sp.auv_u[0][0] = vec![[3.0 * e, 0.0, 0.0]; K]; // terminal speed 3 m/s
+    sp.s.auv.max_speed = 3.5; // raised by hand
+    let plan = build(&sp, &floor);
+    assert!(check_plan(&plan, &floor).passed());
+    let r = check_plan_against(&plan, &floor, &mission, "from mission.toml").unwrap();
+    assert_fails_exactly(&r, &["C1_7 AUV speed"]);
+    assert_eq!(
+        r.limits.changed,
+        [LimitChange {
+            key: "auv.max_speed",
+            stated: 2.0,
+            recorded: 3.5
+        }]
+    );
+    assert_eq!(
+        r.limits.lines(),
+        [
+            "limits: from mission.toml",
+            "  auv.max_speed = 2 (stated), 3.5 as recorded in the plan"
+        ]
+    );
+    assert_eq!(
+        check_plan(&plan, &floor).limits.lines(),
+        ["limits: as recorded in the plan"]
+    );
+
+    // a slower USV than the plan's: its speed fails, its model record is the plan's own
+    let mut slow = mission.clone();
+    slow.usv.max_speed = 0.5;
+    slow.weights.w1 = 1.0; // not a limit: named, not used
+    let honest = build(&spec(1), &floor);
+    let r = check_plan_against(&honest, &floor, &slow, "from slow.toml").unwrap();
+    assert_fails_exactly(&r, &["USV speed"]);
+    assert_eq!(r.limits.ignored, ["weights.w1"]);
+    assert!(r.limits.lines()[2].contains("not limits, the plan's own (not used): weights.w1"));
+
+    // the same limits as recorded: every family as check_plan has it
+    let same = check_plan_against(&honest, &floor, &honest.scenario, "from the plan").unwrap();
+    assert_eq!(same.families, check_plan(&honest, &floor).families);
+    assert!(same.limits.changed.is_empty());
+
+    // the plan's geometry is not a limit: a different team is refused, naming both
+    let mut team = mission.clone();
+    team.team.auvs = 3;
+    let e = check_plan_against(&honest, &floor, &team, "from team.toml").unwrap_err();
+    assert!(matches!(
+        e,
+        LimitsError::Geometry {
+            key: "team.auvs",
+            ..
+        }
+    ));
+    let text = e.to_string();
+    assert!(
+        text.contains(
+            "from team.toml give team.auvs = 3, but the plan was made with team.auvs = 2"
+        ),
+        "{text}"
+    );
 }
 
 #[test]

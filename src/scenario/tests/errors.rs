@@ -540,3 +540,258 @@ fn regression_a_u64_seed_is_not_called_a_string() {
         "{e}"
     );
 }
+
+/// One bad override per validation rule (and per kind of value the deserialiser refuses):
+/// (overrides, the key the message must name).
+const EVERY_RULE: &[(&[&str], &str)] = &[
+    (&["windows=0"], "windows"),
+    (&["windows=-1"], "windows"),
+    (&["seed=-1"], "seed"),
+    (&["team.auvs=0"], "team.auvs"),
+    (&["team.auvs=-3"], "team.auvs"),
+    (&["team.auvs=1.5"], "team.auvs"),
+    (&["horizon.steps=0"], "horizon.steps"),
+    (&["horizon.steps=-1"], "horizon.steps"),
+    (&["horizon.dt=0"], "horizon.dt"),
+    (&["horizon.terminal_margin=3"], "horizon.terminal_margin"),
+    (&["acoustic.sonar_range=-5"], "acoustic.sonar_range"),
+    (&["acoustic.band_tolerance=0"], "acoustic.band_tolerance"),
+    (&["acoustic.max_range=100"], "acoustic.max_range"),
+    (&["acoustic.los_shrink=0"], "acoustic.los_shrink"),
+    (&["acoustic.los_rounds=0"], "acoustic.los_rounds"),
+    (&["acoustic.resolution=0"], "acoustic.resolution"),
+    (&["acoustic.graph=\"ring\""], "acoustic.graph"),
+    (&["auv.max_speed=0"], "auv.max_speed"),
+    (&["auv.max_heading_rate=0"], "auv.max_heading_rate"),
+    (&["auv.min_heading_speed=3"], "auv.min_heading_speed"),
+    (&["auv.floor_clearance=-1"], "auv.floor_clearance"),
+    (&["auv.surface_clearance=-1"], "auv.surface_clearance"),
+    (&["auv.swath_width=0"], "auv.swath_width"),
+    (&["auv.survey_altitude=0"], "auv.survey_altitude"),
+    (&["auv.discretisation=\"rk4\""], "auv.discretisation"),
+    (&["auv.mass=0"], "auv.mass"),
+    (&["auv.added_mass_surge=1"], "auv.added_mass_surge"),
+    (&["auv.added_mass_heave=1"], "auv.added_mass_heave"),
+    (&["auv.damping_surge=1"], "auv.damping_surge"),
+    (&["auv.damping_heave=1"], "auv.damping_heave"),
+    (&["auv.inertia_yaw=0"], "auv.inertia_yaw"),
+    (&["auv.added_inertia_yaw=1"], "auv.added_inertia_yaw"),
+    (&["auv.damping_yaw=1"], "auv.damping_yaw"),
+    (&["usv.max_speed=0"], "usv.max_speed"),
+    (&["usv.objective=\"north\""], "usv.objective"),
+    (&["usv.destination=[nan, 0]"], "usv.destination"),
+    (&["usv.initial_heading=inf"], "usv.initial_heading"),
+    (&["usv.courses=0"], "usv.courses"),
+    (&["usv.away_from=\"home\""], "usv.away_from"),
+    (&["weights.w1=-1"], "weights.w1"),
+    (&["weights.w_lanes=-1"], "weights.w_lanes"),
+    (&["weights.of1_2=\"up\""], "weights.of1_2"),
+    (&["weights.scaling=\"max\""], "weights.scaling"),
+    (&["weights.w8_scaling=\"x\""], "weights.w8_scaling"),
+    (&["seafloor.file=\"floor.png\""], "seafloor.file"),
+    (&["seafloor.values=\"depth\""], "seafloor.values"),
+    (&["seafloor.values=\"height\""], "seafloor.values"),
+    (
+        &["seafloor.file=\"a.asc\"", "seafloor.origin=[91, 0]"],
+        "seafloor.origin",
+    ),
+    (&["seafloor.origin=[43, 5]"], "seafloor.origin"),
+    (
+        &["seafloor.file=\"a.asc\"", "seafloor.crs=\"WGS84\""],
+        "seafloor.crs",
+    ),
+    (&["seafloor.crs=\"EPSG:4326\""], "seafloor.crs"),
+    (
+        &[
+            "seafloor.file=\"a.asc\"",
+            "seafloor.origin=[43, 5]",
+            "seafloor.crs=\"EPSG:32631\"",
+        ],
+        "seafloor.origin",
+    ),
+    (
+        &["seafloor.synthetic.size=[0, 100]"],
+        "seafloor.synthetic.size",
+    ),
+    (&["seafloor.synthetic.cell=0"], "seafloor.synthetic.cell"),
+    (
+        &["seafloor.synthetic.size=[1e6, 100]"],
+        "seafloor.synthetic.size",
+    ),
+    (
+        &["seafloor.synthetic.base_depth=nan"],
+        "seafloor.synthetic.base_depth",
+    ),
+    (
+        &["seafloor.synthetic.slope=[0, inf]"],
+        "seafloor.synthetic.slope",
+    ),
+    (
+        &["seafloor.synthetic.seamounts=10001"],
+        "seafloor.synthetic.seamounts",
+    ),
+    (
+        &["seafloor.synthetic.valleys=10001"],
+        "seafloor.synthetic.valleys",
+    ),
+    (
+        &["seafloor.synthetic.relief=[2, 1]"],
+        "seafloor.synthetic.relief",
+    ),
+    (
+        &["seafloor.synthetic.radius=[0, 1]"],
+        "seafloor.synthetic.radius",
+    ),
+    (
+        &["seafloor.synthetic.depth_range=[-50, -140]"],
+        "seafloor.synthetic.depth_range",
+    ),
+    (&["scp.max_iterations=0"], "scp.max_iterations"),
+    (&["scp.tolerance=0"], "scp.tolerance"),
+    (&["scp.step1_max_iterations=0"], "scp.step1_max_iterations"),
+    (&["scp.step1_tolerance=0"], "scp.step1_tolerance"),
+    (&["scp.feasibility_tol=0"], "scp.feasibility_tol"),
+    (&["scp.trust_region=0"], "scp.trust_region"),
+    (&["scp.min_trust_region=300"], "scp.min_trust_region"),
+    (&["scp.penalty=0"], "scp.penalty"),
+    (&["current.velocity=[5, 0]"], "current.velocity"),
+    (&["current.file_east=\"u.asc\""], "current.file_east"),
+    (&["current.file_north=\"v.asc\""], "current.file_north"),
+    (
+        &[
+            "current.file_east=\"u.png\"",
+            "current.file_north=\"v.asc\"",
+        ],
+        "current.file_east",
+    ),
+    (&["current.profile=[[10, 1], [5, 1]]"], "current.profile[1]"),
+    (&["navigation.sample_period=0"], "navigation.sample_period"),
+    (&["navigation.dvl_noise=-1"], "navigation.dvl_noise"),
+    (&["navigation.dvl_scale=0.5"], "navigation.dvl_scale"),
+    (
+        &["navigation.dvl_max_altitude=0"],
+        "navigation.dvl_max_altitude",
+    ),
+    (&["navigation.heading_noise=-1"], "navigation.heading_noise"),
+    (&["navigation.heading_bias=1"], "navigation.heading_bias"),
+    (&["navigation.depth_noise=-1"], "navigation.depth_noise"),
+    (&["navigation.gps_noise=0"], "navigation.gps_noise"),
+    (&["navigation.initial_noise=0"], "navigation.initial_noise"),
+    (
+        &["navigation.acoustic_period=0"],
+        "navigation.acoustic_period",
+    ),
+    (
+        &["navigation.acoustic_period=2.5"],
+        "navigation.acoustic_period",
+    ),
+    (&["navigation.sound_speed=0"], "navigation.sound_speed"),
+    (&["navigation.range_noise=0"], "navigation.range_noise"),
+    (
+        &["navigation.packet_success=0"],
+        "navigation.packet_success",
+    ),
+    (&["navigation.range_falloff=0"], "navigation.range_falloff"),
+    (
+        &["navigation.estimate_biases=2"],
+        "navigation.estimate_biases",
+    ),
+    (&["simulation.step=1"], "simulation.step"),
+    (&["simulation.step=0.15"], "simulation.step"),
+    (&["sampling.samples=0"], "sampling.samples"),
+    (&["sampling.tree_budget=0"], "sampling.tree_budget"),
+    (&["sampling.attempts=0"], "sampling.attempts"),
+    (
+        &[
+            "initial.usv=[inf, 0]",
+            "team.auvs=1",
+            "initial.auvs=[[0, 0, -1]]",
+        ],
+        "initial.usv",
+    ),
+    (
+        &[
+            "team.auvs=2",
+            "initial.usv=[0, 0]",
+            "initial.auvs=[[0, 0, -1]]",
+        ],
+        "initial.auvs",
+    ),
+    (
+        &[
+            "team.auvs=1",
+            "initial.usv=[0, 0]",
+            "initial.auvs=[[0, 0, 1]]",
+        ],
+        "initial.auvs[0]",
+    ),
+];
+
+/// What a message must say besides the key: what is allowed, as the word or as a range.
+fn says_what_is_allowed(msg: &str) -> bool {
+    [
+        "allowed",
+        "≥",
+        "≤",
+        "<",
+        ">",
+        " from ",
+        "at most",
+        "one of",
+        "positive",
+        "finite",
+        "whole number",
+        "true or false",
+        "path of a grid file",
+    ]
+    .iter()
+    .any(|w| msg.contains(w))
+}
+
+/// Regression: several validation errors named no setting, or named it without saying what
+/// it may be ("applies to a grid file", "must be a non-negative integer" for team.auvs = -3).
+/// Every rule's message names its dotted key and what is allowed.
+#[test]
+fn regression_every_validation_error_names_its_key_and_what_is_allowed() {
+    let mut bad = Vec::new();
+    for (overrides, key) in EVERY_RULE {
+        let e = match default_with(&set(overrides)) {
+            Err(e) => e,
+            Ok(_) => panic!("{overrides:?} was accepted"),
+        };
+        let msg = e.to_string();
+        if !(msg.contains(key) && says_what_is_allowed(&msg) && e.key() == Some(*key)) {
+            bad.push(format!("{overrides:?} ({key}): {msg}"));
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "{} messages:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
+}
+
+/// The integer ranges the deserialiser's errors name are the ones `validate` checks.
+#[test]
+fn integer_ranges_agree_with_validate() {
+    use super::validate::INTEGER_RANGES;
+    for (key, lo, hi) in INTEGER_RANGES {
+        let ok = |n: u64| default_with(&[format!("{key}={n}")]).is_ok();
+        assert!(ok(*lo), "{key} = {lo}");
+        if *lo > 0 {
+            assert!(!ok(lo - 1), "{key} = {}", lo - 1);
+        }
+        if let Some(hi) = hi {
+            assert!(!ok(hi + 1), "{key} = {}", hi + 1);
+        }
+        // a negative value names the range
+        let e = default_with(&[format!("{key}=-1")])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&super::validate::integer_text(key).unwrap()),
+            "{e}"
+        );
+    }
+}
