@@ -207,21 +207,11 @@ fn read_manifest(out: &Path, kind: &Kind) -> Result<Option<Manifest>, OutputErro
     if let Some(bad) = m.files.iter().find(|f| !safe(kind, f)) {
         return Err(refuse(format!(
             "it lists {:?}, which is not a file this command writes inside {}",
-            sanitize(bad),
+            bad,
             out.display()
         )));
     }
     Ok(Some(m))
-}
-
-/// `s` with control characters shown as escapes (a manifest's text reaches the terminal).
-fn sanitize(s: &str) -> String {
-    s.chars()
-        .flat_map(|c| match c.is_control() {
-            true => c.escape_default().collect::<Vec<_>>(),
-            false => vec![c],
-        })
-        .collect()
 }
 
 /// The state a Ctrl-C handler and the thread committing a set share: an interrupt before the

@@ -34,6 +34,10 @@ pub const MIN_RESOLUTION: f64 = 0.1;
 pub const MAX_RESOLUTION: f64 = 100.0;
 /// Largest horizon, in steps.
 pub const MAX_STEPS: usize = 1000;
+/// Most windows a mission may have (10 000 windows of the paper's 2 000 s: 231 days).
+pub const MAX_WINDOWS: usize = 10_000;
+/// Most SCP iterations a stage may take.
+pub const MAX_SCP_ITERATIONS: usize = 100_000;
 /// Largest synthetic grid, in cells per side.
 pub const MAX_CELLS_PER_SIDE: f64 = 10_000.0;
 /// Largest number of synthetic seamounts, and of valleys.
@@ -46,15 +50,15 @@ pub const MAX_COURSES: usize = 72;
 /// from here rather than "a non-negative integer".
 pub(crate) const INTEGER_RANGES: &[(&str, u64, Option<u64>)] = &[
     ("seed", 0, None),
-    ("windows", 1, None),
+    ("windows", 1, Some(MAX_WINDOWS as u64)),
     ("team.auvs", 1, Some(MAX_AUVS as u64)),
     ("horizon.steps", 1, Some(MAX_STEPS as u64)),
     ("acoustic.los_rounds", 1, Some(100)),
     ("usv.courses", 1, Some(MAX_COURSES as u64)),
     ("seafloor.synthetic.seamounts", 0, Some(MAX_FEATURES as u64)),
     ("seafloor.synthetic.valleys", 0, Some(MAX_FEATURES as u64)),
-    ("scp.max_iterations", 1, None),
-    ("scp.step1_max_iterations", 1, None),
+    ("scp.max_iterations", 1, Some(MAX_SCP_ITERATIONS as u64)),
+    ("scp.step1_max_iterations", 1, Some(MAX_SCP_ITERATIONS as u64)),
     ("sampling.samples", 1, Some(1000)),
     ("sampling.tree_budget", 1, Some(100_000)),
     ("sampling.attempts", 1, Some(100_000)),
@@ -162,8 +166,8 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     c.int(
         "windows",
         s.windows,
-        s.windows >= 1,
-        "must be an integer ≥ 1 (number of receding-horizon windows)",
+        (1..=MAX_WINDOWS).contains(&s.windows),
+        format!("must be an integer from 1 to {MAX_WINDOWS} (number of receding-horizon windows)"),
     );
     c.int(
         "team.auvs",
@@ -488,16 +492,16 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     c.int(
         "scp.max_iterations",
         p.max_iterations,
-        p.max_iterations >= 1,
-        "must be an integer ≥ 1",
+        (1..=MAX_SCP_ITERATIONS).contains(&p.max_iterations),
+        format!("must be an integer from 1 to {MAX_SCP_ITERATIONS}"),
     );
     c.positive("scp.tolerance", p.tolerance, "(relative decrease)");
     if let Some(n) = p.step1_max_iterations {
         c.int(
             "scp.step1_max_iterations",
             n,
-            n >= 1,
-            "must be an integer ≥ 1",
+            (1..=MAX_SCP_ITERATIONS).contains(&n),
+            format!("must be an integer from 1 to {MAX_SCP_ITERATIONS}"),
         );
     }
     if let Some(t) = p.step1_tolerance {
