@@ -241,7 +241,13 @@ pub fn monte_carlo(
     seed: u64,
     runs: usize,
 ) -> Result<SimRecord, SimError> {
-    fly_plan(plan, plan_name, floor, &Options::new(seed, runs), &mut |_| {})
+    fly_plan(
+        plan,
+        plan_name,
+        floor,
+        &Options::new(seed, runs),
+        &mut |_| {},
+    )
 }
 
 /// The check's verdict for [`fly_plan`]: the failing families (empty when it passes), or why

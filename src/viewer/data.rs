@@ -116,11 +116,13 @@ pub fn sim(sim: &SimRecord, auvs: usize) -> Result<SimData, ViewerError> {
     if !sim.times.iter().all(|t| t.is_finite()) || sim.times.windows(2).any(|t| t[1] <= t[0]) {
         return bad("its epoch times are not finite and increasing".into());
     }
-    let shown = SHOWN_ESTIMATES.iter().find_map(|&(policy, estimator, flown)| {
-        sim.estimates
-            .iter()
-            .find(|e| e.policy == policy && e.estimator == estimator && e.flown == flown)
-    });
+    let shown = SHOWN_ESTIMATES
+        .iter()
+        .find_map(|&(policy, estimator, flown)| {
+            sim.estimates
+                .iter()
+                .find(|e| e.policy == policy && e.estimator == estimator && e.flown == flown)
+        });
     let track = |what: &str, t: &[Vec<[f64; 3]>]| -> Result<Vec<Vec<[f64; 3]>>, ViewerError> {
         if t.len() != auvs {
             return Err(ViewerError::Sim(format!(
