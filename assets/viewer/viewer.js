@@ -53,8 +53,8 @@ function legend() {
     $('estimate-name').textContent = e ? `(${e.policy}, ${e.estimator}, ${e.flown})` : '(none: every estimator failed)';
     const dt = data.sim.times.length > 1 ? data.sim.times[1] - data.sim.times[0] : 0;
     $('sim-note').textContent =
-      `simulation seed ${data.sim.seed}: ${data.sim.times.length} epochs every ${+dt.toFixed(3)} s; ` +
-      (e ? `estimate RMS error ${e.team_rmse_m.toFixed(2)} m. ` : '') +
+      `simulation seed ${data.sim.seed}: ${data.sim.times.length} epochs every ${+dt.toFixed(3)} s` +
+      (e ? `; estimate RMS error ${e.team_rmse_m.toFixed(2)} m. ` : '. ') +
       'The AUV markers follow the executed tracks while they are shown, else the planned paths.';
   }
   const f = data.floor;
