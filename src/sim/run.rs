@@ -1,8 +1,8 @@
 //! `shoal simulate`'s job: fly a plan (and its Step 1 paths), measure, estimate under every
 //! policy with both estimators, and score it all.
 //!
-//! Before anything is flown, [`fly_plan`] validates the plan's scenario, runs the plan's check
-//! (as its [`Gate`] says) and counts the cost ([`super::budget`]). An estimator that fails
+//! Before anything is flown, [`fly_plan`] validates the plan's scenario, counts the cost
+//! ([`super::budget`]) and runs the plan's check (as its [`Gate`] says). An estimator that fails
 //! (Levenberg–Marquardt that does not converge, say) does not stop the simulation: it is
 //! recorded for its policy in [`SimRecord::failed_estimates`], and the others are kept.
 
@@ -315,8 +315,8 @@ fn flight_name(flown: Flown) -> &'static str {
 /// one was asked for. The flight is the same in every run (the current and the controller are
 /// deterministic); the sensor errors, the noise and the packets are drawn anew.
 ///
-/// First the plan's scenario is validated, the plan checked as `options.gate` says and the
-/// cost counted ([`Cost::of`]); each refusal is a [`SimError`] naming the setting.
+/// First the plan's scenario is validated, the cost counted ([`Cost::of`]) and the plan
+/// checked as `options.gate` says; each refusal is a [`SimError`] naming the setting.
 pub fn fly_plan(
     plan: &Plan,
     plan_name: &str,
@@ -346,13 +346,13 @@ pub fn fly_plan(
             why: "the plan has no window to fly".into(),
         });
     }
+    let cost = Cost::of(plan, plan_name, runs)?;
     let check_failures = gate(plan, plan_name, floor, options.gate)?;
     if !check_failures.is_empty() {
         on_progress(Progress::Unchecked {
             failing: &check_failures,
         });
     }
-    let cost = Cost::of(plan, plan_name, runs)?;
     on_progress(Progress::Counted(&cost));
     let cancelled = || options.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
     let window = s.horizon.steps as f64 * s.horizon.dt;
