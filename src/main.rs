@@ -169,6 +169,11 @@ enum Command {
         /// Do not draw the figures (sim-error, sim-tracks) into `figures` beside sim.json.
         #[arg(long)]
         no_plot: bool,
+        /// Fly a plan that fails its check (`shoal check`) all the same, with a warning;
+        /// sim.json then lists the failing families (check_failures). Without it such a plan
+        /// is refused (exit 1).
+        #[arg(long)]
+        unchecked: bool,
     },
     /// Plan the same scenarios with the MPC and the paper's RRT-like baseline (team sizes ×
     /// seeds × scenarios), check every plan, and write runs.csv, summary.md and the figure
@@ -433,6 +438,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             seafloor,
             no_plot,
+            unchecked,
         } => simulate(
             &plan,
             &set,
@@ -441,6 +447,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             seafloor.as_deref(),
             !no_plot,
+            unchecked,
         ),
         Command::Compare {
             scenarios,
@@ -686,6 +693,10 @@ fn four_numbers(text: &str) -> Result<[f64; 4], String> {
     }
 }
 
+/// Raised by Ctrl-C during `shoal simulate`: the library stops between samples and estimates.
+static SIM_CANCEL: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+#[allow(clippy::too_many_arguments)]
 fn simulate(
     plan: &Path,
     set: &[String],
@@ -694,32 +705,133 @@ fn simulate(
     out: Option<PathBuf>,
     seafloor: Option<&Path>,
     figures: bool,
+    unchecked: bool,
 ) -> Result<ExitCode> {
+    use shoal::sim::{Gate, Progress, SimError};
+    use std::sync::atomic::Ordering;
     let p = shoal::output::read_plan(plan)?;
     let floor = shoal::check::load_floor(&p, seafloor)
         .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
     let name = plan.display().to_string();
     let p = shoal::sim::run::with_settings(&p, &name, set)?;
     let seed = seed.unwrap_or(p.scenario.seed);
-    let start = std::time::Instant::now();
-    let record = shoal::sim::monte_carlo(&p, &name, &floor, seed, runs)?;
     let out = out.unwrap_or_else(|| base_dir(Some(plan)).join("sim.json"));
+    ctrlc::set_handler(|| {
+        if SIM_CANCEL.swap(true, Ordering::SeqCst) {
+            eprintln!("interrupted again: stopping now, writing nothing");
+            std::process::exit(130);
+        }
+        eprintln!(
+            "interrupted: stopping after the runs that have finished (Ctrl-C again to stop at \
+             once, writing nothing)"
+        );
+    })
+    .context("installing the Ctrl-C handler")?;
+    // on a terminal: a bar of the runs with their ETA (a spinner for one run); hidden otherwise
+    let bar = ProgressBar::with_draw_target(Some(runs as u64), ProgressDrawTarget::stderr());
+    let template = match runs {
+        1 => "{spinner} [{elapsed_precise}] {msg}",
+        _ => "{bar:30} {pos}/{len} runs, {elapsed_precise} elapsed, ETA {eta} {msg}",
+    };
+    bar.set_style(ProgressStyle::with_template(template).expect("a valid template"));
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    let say = |text: String| match bar.is_hidden() {
+        true => eprintln!("{text}"),
+        false => bar.println(text),
+    };
+    let options = shoal::sim::Options {
+        seed,
+        runs,
+        gate: if unchecked {
+            Gate::Unchecked
+        } else {
+            Gate::Check
+        },
+        cancel: Some(&SIM_CANCEL),
+    };
+    let start = std::time::Instant::now();
+    let flown = shoal::sim::fly_plan(&p, &name, &floor, &options, &mut |event| match event {
+        Progress::Unchecked { failing } => say(format!(
+            "WARNING: {name} fails its check ({}): flying it anyway (--unchecked); what it \
+             shows is of a plan the team cannot fly as planned, and sim.json says so \
+             (check_failures)",
+            failing.join(", ")
+        )),
+        Progress::Counted(c) => say(format!(
+            "simulating {name}: {} AUV(s) over {} s, {} samples of {} RK4 steps each per AUV \
+             and flight, {} acoustic epochs; {} run(s)",
+            c.auvs, c.duration, c.samples, c.substeps, c.epochs, c.runs
+        )),
+        Progress::Flying(what) => bar.set_message(format!("flying {what}")),
+        Progress::Estimating { run } => bar.set_message(match runs {
+            1 => "estimating".to_string(),
+            _ => format!("estimating run {}", run + 1),
+        }),
+        Progress::RunDone { finished, .. } => bar.set_position(finished as u64),
+    });
+    bar.finish_and_clear();
+    let record = match flown {
+        Ok(record) => record,
+        Err(SimError::Interrupted) => {
+            eprintln!(
+                "interrupted before the first run finished: nothing was written (any earlier {} \
+                 is left as it was)",
+                out.display()
+            );
+            return Ok(ExitCode::from(130));
+        }
+        Err(e @ (SimError::FailsCheck { .. } | SimError::Malformed { .. })) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(1));
+        }
+        Err(e) => return Err(e.into()),
+    };
     shoal::sim::write(&record, &out)?;
     print!("{}", printable_lines(&shoal::sim::summary::table(&record)));
-    if figures {
+    if !record.failed_estimates.is_empty() {
+        let each: Vec<String> = record
+            .failed_estimates
+            .iter()
+            .map(|f| {
+                format!(
+                    "{} {} {}: {}",
+                    f.flown,
+                    f.policy.name(),
+                    f.estimator,
+                    f.brief()
+                )
+            })
+            .collect();
+        eprintln!(
+            "warning: {} estimate(s) failed ({}); the flight and the other estimates are in {}",
+            each.len(),
+            each.join("; "),
+            out.display()
+        );
+    }
+    // interrupted, it stops at sim.json
+    if figures && record.incomplete.is_none() {
         let dir = base_dir(Some(&out)).join("figures");
         let files = shoal::figures::write_sim(&p, &floor, &record, &dir)
             .with_context(|| format!("drawing the figures of {}", out.display()))?;
         println!("drew {} figure files in {}", files.len(), dir.display());
     }
+    let finished = record.incomplete.as_ref().map_or(runs, |i| i.runs_finished);
     println!(
-        "wrote {} ({} run{}, seed {seed}, {:.1} s)",
+        "wrote {} ({} run{}{}, seed {seed}, {:.1} s)",
         out.display(),
-        runs,
-        if runs == 1 { "" } else { "s" },
+        finished,
+        if finished == 1 { "" } else { "s" },
+        match finished < runs {
+            true => format!(" of {runs}: interrupted, marked incomplete"),
+            false => String::new(),
+        },
         start.elapsed().as_secs_f64()
     );
-    Ok(ExitCode::SUCCESS)
+    Ok(match record.incomplete {
+        Some(_) => ExitCode::from(130),
+        None => ExitCode::SUCCESS,
+    })
 }
 
 fn view(plan: &Path, seafloor: Option<&Path>, sim: Option<&Path>, out: &Path) -> Result<ExitCode> {

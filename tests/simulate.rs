@@ -358,3 +358,376 @@ fn only_one_current_grid_file_is_refused() {
     .to_string();
     assert!(e.contains("current.file_east"), "{e}");
 }
+
+/// `shoal` with `args`: (exit code, stdout, stderr).
+fn shoal_cli(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_shoal"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// The default plan written into a fresh directory: (directory, plan.json's path).
+fn written_plan(plan: &shoal::Plan) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("plan.json");
+    shoal::output::write_plan(plan, &path).unwrap();
+    (dir, path.display().to_string())
+}
+
+#[test]
+fn regression_a_tiny_simulation_step_is_refused() {
+    // `--set simulation.step=1e-9` flew 4·10¹⁰ RK4 steps per AUV: a hang
+    let (plan, floor) = default_plan();
+    let e = run::with_settings(plan, "plan.json", &["simulation.step=1e-9".into()])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("simulation.step = 1e-9") && e.contains("allowed from 0.001 to 0.2 s"),
+        "{e}"
+    );
+    // a plan file whose own scenario holds it (planned before the rule, or edited by hand)
+    let mut p = plan.clone();
+    p.scenario.simulation.step = 1e-300;
+    let e = simulate(&p, "out/plan.json", floor, 1).unwrap_err();
+    assert!(matches!(e, SimError::PlanSetting { .. }), "{e}");
+    let e = e.to_string();
+    assert!(
+        e.starts_with("out/plan.json: simulation.step = 1e-300") && e.contains("0.001"),
+        "{e}"
+    );
+    // the sampling period sets a count too
+    let e = run::with_settings(
+        plan,
+        "plan.json",
+        &[
+            "simulation.step=0.001".into(),
+            "navigation.sample_period=1e-7".into(),
+        ],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("navigation.sample_period = 1e-7") && e.contains("allowed from 0.01 to 10 s"),
+        "{e}"
+    );
+    let e = run::with_settings(
+        plan,
+        "plan.json",
+        &["navigation.acoustic_period=1e-3".into()],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("navigation.acoustic_period") && e.contains("allowed from 1 to 3600 s"),
+        "{e}"
+    );
+}
+
+#[test]
+fn regression_plan_refuses_a_tiny_simulation_step() {
+    // `shoal plan --set simulation.step=1e-300` was accepted, and simulate then hung on its plan
+    let dir = tempfile::tempdir().unwrap();
+    let (code, _, err) = shoal_cli(&[
+        "plan",
+        "--no-plot",
+        "-q",
+        "-o",
+        dir.path().to_str().unwrap(),
+        "--set",
+        "simulation.step=1e-300",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("simulation.step = 1e-300") && err.contains("allowed from 0.001 to 0.2 s"),
+        "{err}"
+    );
+    assert!(!dir.path().join("plan.json").exists());
+}
+
+#[test]
+fn regression_a_plan_lasting_years_is_refused_before_flying() {
+    // a plan of a huge δ aborted on memory, allocating its samples
+    let (plan, floor) = default_plan();
+    let with = |dt: f64, set: &[&str]| {
+        let mut p = plan.clone();
+        p.scenario.horizon.dt = dt;
+        let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        run::with_settings(&p, "out/plan.json", &set).unwrap()
+    };
+    let e = simulate(&with(1.5e8, &[]), "out/plan.json", floor, 1).unwrap_err();
+    assert!(matches!(e, SimError::TooLong { .. }), "{e}");
+    let e = e.to_string();
+    assert!(
+        e.contains("out/plan.json lasts 3.0e9 s")
+            && e.contains("simulation.step = 0.05 s")
+            && e.contains("6.0e11 RK4 steps")
+            && e.contains("above the 1.0e9 allowed"),
+        "{e}"
+    );
+    // fine samples: within the steps allowed, above the samples
+    let fine = ["simulation.step=0.01", "navigation.sample_period=0.01"];
+    let e = simulate(&with(1000.0, &fine), "out/plan.json", floor, 1)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("navigation.sample_period = 0.01 s") && e.contains("samples"),
+        "{e}"
+    );
+    // many acoustic epochs: above the positions the estimators may solve for
+    let e = simulate(&with(1e4, &[]), "out/plan.json", floor, 1)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("navigation.acoustic_period = 10 s") && e.contains("positions"),
+        "{e}"
+    );
+    // and runs × the positions of a run
+    let e = shoal::sim::monte_carlo(plan, "out/plan.json", floor, 1, 100_000)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("--runs 100000") && e.contains("at most 16583 runs"),
+        "{e}"
+    );
+}
+
+/// The default plan with AUV 0 pulled 400 m east at one step of its final stage: it fails the
+/// check's dynamics.
+fn tampered_plan() -> shoal::Plan {
+    let mut p = default_plan().0.clone();
+    p.windows[0].final_.auvs[0].position[5][0] += 400.0;
+    p
+}
+
+#[test]
+fn regression_simulate_refuses_a_plan_that_fails_its_check() {
+    let (_dir, path) = written_plan(&tampered_plan());
+    let (code, out, err) = shoal_cli(&["simulate", &path, "--no-plot"]);
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(
+        err.contains(&format!("{path} fails its check (")) && err.contains("--unchecked"),
+        "{err}"
+    );
+    assert!(!std::path::Path::new(&path)
+        .with_file_name("sim.json")
+        .exists());
+
+    // flown anyway, loudly, and sim.json says so
+    let (code, out, err) = shoal_cli(&["simulate", &path, "--no-plot", "--unchecked"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        err.contains("WARNING") && err.contains("fails its check"),
+        "{err}"
+    );
+    assert!(out.contains("UNCHECKED"), "{out}");
+    let sim = std::path::Path::new(&path).with_file_name("sim.json");
+    let r: SimRecord = serde_json::from_slice(&std::fs::read(sim).unwrap()).unwrap();
+    assert!(!r.check_failures.is_empty());
+    assert!(
+        r.check_failures.iter().any(|f| f.starts_with("C1_1")),
+        "{:?}",
+        r.check_failures
+    );
+
+    // a plan whose structure is broken is not flown even unchecked
+    let (plan, floor) = default_plan();
+    let mut p = plan.clone();
+    p.initial.auvs.pop();
+    let options = shoal::sim::Options {
+        gate: shoal::sim::Gate::Unchecked,
+        ..shoal::sim::Options::new(1, 1)
+    };
+    let e = shoal::sim::fly_plan(&p, "plan.json", floor, &options, &mut |_| {}).unwrap_err();
+    assert!(matches!(e, SimError::Malformed { .. }), "{e}");
+}
+
+#[test]
+fn regression_an_estimator_that_does_not_converge_is_reported_for_its_policy() {
+    // with this current the factor graph of one policy did not converge, and simulate exited 2
+    // writing nothing
+    let (plan, floor) = default_plan();
+    let p = run::with_settings(plan, "plan.json", &["current.velocity=[0.5,0.2]".into()]).unwrap();
+    let r = simulate(&p, "plan.json", floor, 1).unwrap();
+    assert!(!r.failed_estimates.is_empty(), "every estimator converged");
+    let f = &r.failed_estimates[0];
+    assert_eq!(f.estimator, "factor_graph");
+    let n = f.iterations.expect("a non-convergence");
+    assert_eq!(f.brief(), format!("did not converge after {n} iterations"));
+    // the other estimates are kept, ten in all with the failures
+    assert_eq!(r.estimates.len() + r.failed_estimates.len(), 10);
+    assert!(r
+        .estimates
+        .iter()
+        .any(|e| e.policy == f.policy && e.estimator == "ekf" && e.flown == f.flown));
+    let table = shoal::sim::summary::table(&r);
+    assert!(
+        table.contains(&format!(
+            "{}: did not converge after {n} iterations",
+            f.policy.name()
+        )),
+        "{table}"
+    );
+    // and the record is what view reads
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sim.json");
+    shoal::sim::write(&r, &path).unwrap();
+    let back: SimRecord = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    assert_eq!(back.failed_estimates, r.failed_estimates);
+    shoal::viewer::data::sim(&back, plan.scenario.team.auvs).unwrap();
+}
+
+#[test]
+fn regression_every_sim_json_simulate_writes_is_read_by_view() {
+    let (plan, floor) = default_plan();
+    let auvs = plan.scenario.team.auvs;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sim.json");
+    let round_trip = |r: &SimRecord| -> SimRecord {
+        shoal::sim::write(r, &path).unwrap();
+        let back: SimRecord = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+        shoal::viewer::data::sim(&back, auvs).unwrap();
+        back
+    };
+    // a Monte Carlo record
+    let mc = shoal::sim::monte_carlo(plan, "plan.json", floor, 3, 2).unwrap();
+    assert_eq!(round_trip(&mc).monte_carlo.unwrap().runs, 2);
+    // the planned chain's factor graph failed: the page shows the next estimate
+    let mut r = default_sim().clone();
+    r.estimates
+        .retain(|e| !(e.policy == Policy::Chain && e.estimator == "factor_graph"));
+    let shown = shoal::viewer::data::sim(&round_trip(&r), auvs).unwrap();
+    assert_eq!(shown.estimate.unwrap().estimator, "ekf");
+    // every estimate failed: the executed tracks alone
+    r.estimates.clear();
+    assert!(shoal::viewer::data::sim(&round_trip(&r), auvs)
+        .unwrap()
+        .estimate
+        .is_none());
+    // a number JSON cannot hold is refused when written, by name, not left for view to trip on
+    let mut r = default_sim().clone();
+    r.estimates[0].metrics.mean_nees = f64::INFINITY;
+    let e = shoal::sim::write(&r, &dir.path().join("bad.json"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("estimates[0].metrics.mean_nees") && e.contains("not a finite number"),
+        "{e}"
+    );
+    assert!(!dir.path().join("bad.json").exists());
+
+    // the command line: simulate, then view reads what it wrote
+    let (_d, plan_path) = written_plan(plan);
+    let sim = std::path::Path::new(&plan_path).with_file_name("sim.json");
+    let html = sim.with_file_name("view.html");
+    let (code, out, err) = shoal_cli(&["simulate", &plan_path, "--no-plot", "--runs", "2"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let (code, out, err) = shoal_cli(&[
+        "view",
+        &plan_path,
+        "--sim",
+        sim.to_str().unwrap(),
+        "-o",
+        html.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+}
+
+#[test]
+fn regression_a_current_the_auvs_cannot_stem_stops_with_a_message() {
+    // the flight's state turned NaN, and the first estimator then refused its odometry
+    let (plan, floor) = default_plan();
+    let p = run::with_settings(plan, "plan.json", &["current.velocity=[3,0]".into()]).unwrap();
+    let e = simulate(&p, "plan.json", floor, 1).unwrap_err();
+    assert!(matches!(e, SimError::Diverged { .. }), "{e}");
+    let e = e.to_string();
+    assert!(e.contains("6-DoF state") && e.contains("3.00 m/s"), "{e}");
+}
+
+#[test]
+fn regression_runs_can_be_cancelled_and_keep_what_finished() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let (plan, floor) = default_plan();
+    let cancel = AtomicBool::new(false);
+    let options = shoal::sim::Options {
+        cancel: Some(&cancel),
+        ..shoal::sim::Options::new(4, 5)
+    };
+    let mut done = Vec::new();
+    let r = shoal::sim::fly_plan(plan, "plan.json", floor, &options, &mut |p| {
+        if let shoal::sim::Progress::RunDone { finished, runs } = p {
+            done.push((finished, runs));
+            if finished == 2 {
+                cancel.store(true, Ordering::Relaxed);
+            }
+        }
+    })
+    .unwrap();
+    assert_eq!(done, [(1, 5), (2, 5)]);
+    let i = r.incomplete.as_ref().unwrap();
+    assert_eq!((i.runs_asked, i.runs_finished), (5, 2));
+    let mc = r.monte_carlo.as_ref().unwrap();
+    assert_eq!(mc.runs, 2);
+    assert_eq!(mc.each.iter().map(|x| x.seed).collect::<Vec<_>>(), [4, 5]);
+    assert!(shoal::sim::summary::table(&r).contains("INCOMPLETE (interrupted): 2 of 5 runs"));
+
+    // stopped while flying: no run finished, nothing to record
+    cancel.store(false, Ordering::Relaxed);
+    let e = shoal::sim::fly_plan(plan, "plan.json", floor, &options, &mut |p| {
+        if let shoal::sim::Progress::Flying(_) = p {
+            cancel.store(true, Ordering::Relaxed);
+        }
+    })
+    .unwrap_err();
+    assert!(matches!(e, SimError::Interrupted), "{e}");
+}
+
+/// Ctrl-C during `shoal simulate --runs`: exit 130, and either the finished runs in sim.json,
+/// marked incomplete (and readable by view), or a plain word that nothing was written.
+#[cfg(unix)]
+#[test]
+fn regression_ctrl_c_keeps_the_finished_runs() {
+    use std::io::BufRead;
+    let (_d, plan_path) = written_plan(&default_plan().0);
+    let sim = std::path::Path::new(&plan_path).with_file_name("sim.json");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_shoal"))
+        .args(["simulate", &plan_path, "--no-plot", "--runs", "500"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // its handler is set before it prints this
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    while !line.starts_with("simulating") {
+        line.clear();
+        assert!(
+            err.read_line(&mut line).unwrap() > 0,
+            "shoal simulate ended early"
+        );
+    }
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    // SAFETY: sending a signal to our own child process
+    assert_eq!(
+        unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) },
+        0
+    );
+    let out = child.wait_with_output().unwrap();
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(130), "{stdout}{rest}");
+    if sim.exists() {
+        let r: SimRecord = serde_json::from_slice(&std::fs::read(&sim).unwrap()).unwrap();
+        let i = r.incomplete.expect("marked incomplete");
+        assert!(i.runs_finished >= 1 && i.runs_finished < 500, "{i:?}");
+        assert!(stdout.contains("INCOMPLETE"), "{stdout}");
+    } else {
+        assert!(rest.contains("nothing was written"), "{rest}");
+    }
+}

@@ -152,7 +152,8 @@ export class MissionScene {
       const mat = new THREE.MeshLambertMaterial({ color: dark, emissive: dark, emissiveIntensity: 0.4 });
       const exec = new THREE.InstancedMesh(cyl, mat, segments);
       exec.count = s.times.length - 1;
-      const est = s.estimate.position[i];
+      // no estimate when every estimator failed: the executed tracks alone
+      const est = s.estimate ? s.estimate.position[i] : [];
       const pos = new Float32Array(3 * est.length);
       est.forEach((p, e) => pos.set([p[0] - this.cx, p[1] - this.cy, p[2]], 3 * e));
       const g = new THREE.BufferGeometry();

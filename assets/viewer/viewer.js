@@ -50,12 +50,12 @@ function legend() {
   if (data.sim) {
     const e = data.sim.estimate;
     $('layers').hidden = false;
-    $('estimate-name').textContent = `(${e.policy}, ${e.estimator}, ${e.flown})`;
+    $('estimate-name').textContent = e ? `(${e.policy}, ${e.estimator}, ${e.flown})` : '(none: every estimator failed)';
     const dt = data.sim.times.length > 1 ? data.sim.times[1] - data.sim.times[0] : 0;
     $('sim-note').textContent =
-      `simulation seed ${data.sim.seed}: ${data.sim.times.length} epochs every ${+dt.toFixed(3)} s; ` +
-      `estimate RMS error ${e.team_rmse_m.toFixed(2)} m. The AUV markers follow the executed ` +
-      'tracks while they are shown, else the planned paths.';
+      `simulation seed ${data.sim.seed}: ${data.sim.times.length} epochs every ${+dt.toFixed(3)} s` +
+      (e ? `; estimate RMS error ${e.team_rmse_m.toFixed(2)} m. ` : '. ') +
+      'The AUV markers follow the executed tracks while they are shown, else the planned paths.';
   }
   const f = data.floor;
   $('depthbar').style.background = `linear-gradient(to right, ${DEPTH_STOPS.join(', ')})`;

@@ -27,7 +27,8 @@ pub const SIM_FIGURES: [&str; 2] = ["sim-error", "sim-tracks"];
 /// Write the figures of `sim`, a simulation of `plan` over `floor`, into `dir` (created if
 /// needed): `sim-error` (the team's position error against time under every policy and both
 /// estimators) and `sim-tracks` (the paths over the floor, with the planned-chain factor-graph
-/// estimate). Returns the paths written: `STEM.png` and `STEM.svg` for every stem of
+/// estimate, or when that estimator failed the next of
+/// [`SHOWN_ESTIMATES`](crate::viewer::data::SHOWN_ESTIMATES) the record holds). Returns the paths written: `STEM.png` and `STEM.svg` for every stem of
 /// [`SIM_FIGURES`].
 pub fn write_sim(
     plan: &Plan,
@@ -35,7 +36,13 @@ pub fn write_sim(
     sim: &SimRecord,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, FigureError> {
-    write_sim_with(plan, floor, sim, dir, Policy::Chain, "factor_graph")
+    // the first estimate the record holds, as the viewer picks it (a failed estimator leaves
+    // its estimate out)
+    let (policy, estimator, _) = crate::viewer::data::SHOWN_ESTIMATES
+        .into_iter()
+        .find(|&(p, e, f)| estimate(sim, f, p, e).is_some())
+        .unwrap_or(crate::viewer::data::DEFAULT_ESTIMATE);
+    write_sim_with(plan, floor, sim, dir, policy, estimator)
 }
 
 /// [`write_sim`], with `sim-tracks` showing the estimate of `policy` by `estimator`

@@ -25,8 +25,8 @@ pub use sampling::Sampling;
 pub use sim::{profile_factor, Current, Navigation, Simulation};
 pub use template::default_toml;
 pub use validate::{
-    validate, whole_multiple as validate_whole_multiple, Violation, MAX_AUVS, MAX_CELLS_PER_SIDE,
-    MAX_FEATURES, MAX_STEPS,
+    validate, whole_multiple as validate_whole_multiple, Violation, ACOUSTIC_PERIOD, MAX_AUVS,
+    MAX_CELLS_PER_SIDE, MAX_FEATURES, MAX_STEPS, POSITION_NOISE, SAMPLE_PERIOD, SIM_STEP,
 };
 
 /// A full, resolved scenario. Every field has a default, so an empty file is a valid scenario.

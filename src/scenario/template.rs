@@ -330,11 +330,12 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              sensor; GPS on the USV; one-way travel-time acoustic ranges."
         }
         "navigation.sample_period" => {
-            "Sampling period of the DVL, heading, depth sensor and GPS, seconds. > 0, and \
-             acoustic_period is a whole number of them."
+            "Sampling period of the DVL, heading, depth sensor and GPS, seconds. From 0.01 to \
+             10, and acoustic_period is a whole number of them."
         }
         "navigation.dvl_noise" => {
-            "DVL velocity noise, m/s, 1σ per axis and sample (a 1.2 MHz DVL: ~1 cm/s). ≥ 0."
+            "DVL velocity noise, m/s, 1σ per axis and sample (a 1.2 MHz DVL: ~1 cm/s). From 0 \
+             to 1."
         }
         "navigation.dvl_scale" => {
             "DVL scale-factor error, a fraction, 1σ drawn once per AUV (±0.2 %: Teledyne RDI \
@@ -344,24 +345,30 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Highest altitude for DVL bottom lock, metres (1.2 MHz: ~30 m); above it the DVL \
              measures the velocity through the water and dead reckoning misses the current. > 0."
         }
-        "navigation.heading_noise" => "Compass / AHRS heading noise, rad, 1σ per sample. ≥ 0.",
+        "navigation.heading_noise" => {
+            "Compass / AHRS heading noise, rad, 1σ per sample. From 0 to 0.5."
+        }
         "navigation.heading_bias" => {
             "Compass / AHRS heading bias, rad, 1σ drawn once per AUV (default 1°: a \
              calibrated magnetic compass). 0 ≤ value < 0.5."
         }
-        "navigation.depth_noise" => "Depth (pressure) sensor noise, metres, 1σ per sample. ≥ 0.",
-        "navigation.gps_noise" => "USV GPS noise, metres, 1σ per horizontal axis. > 0.",
+        "navigation.depth_noise" => {
+            "Depth (pressure) sensor noise, metres, 1σ per sample. From 0 to 100."
+        }
+        "navigation.gps_noise" => {
+            "USV GPS noise, metres, 1σ per horizontal axis. From 0.001 to 1000."
+        }
         "navigation.initial_noise" => {
             "Error of each AUV's start position (its GPS fix before the dive), metres, 1σ per \
-             axis. > 0."
+             axis. From 0.001 to 1000."
         }
         "navigation.acoustic_period" => {
             "Acoustic cycle, seconds: every link pings once per cycle, and the estimators solve \
-             for every vehicle's position once per cycle. > 0; horizon.dt is a whole number of \
-             cycles."
+             for every vehicle's position once per cycle. From 1 to 3600; horizon.dt is a whole \
+             number of cycles."
         }
         "navigation.sound_speed" => "Speed of sound, m/s (travel time × speed = range). > 0.",
-        "navigation.range_noise" => "Acoustic range noise, metres, 1σ. > 0.",
+        "navigation.range_noise" => "Acoustic range noise, metres, 1σ. From 0.001 to 1000.",
         "navigation.packet_success" => {
             "Probability that a ping is received at short range. 0 < value ≤ 1."
         }
@@ -378,8 +385,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "simulation" => "How `shoal simulate` flies a plan (ours).",
         "simulation.step" => {
-            "Fixed step of the RK4 integrator of the 6-DoF vehicle model, seconds. 0 < step ≤ \
-             0.2, and navigation.sample_period is a whole number of steps."
+            "Fixed step of the RK4 integrator of the 6-DoF vehicle model, seconds. From 0.001 \
+             to 0.2, and navigation.sample_period is a whole number of steps."
         }
         "sampling" => {
             "The RRT-like baseline of the paper's Section V, `shoal plan --method rrt-like` \

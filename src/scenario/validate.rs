@@ -44,6 +44,20 @@ pub const MAX_CELLS_PER_SIDE: f64 = 10_000.0;
 pub const MAX_FEATURES: usize = 10_000;
 /// Most first courses `usv.courses` may ask for (one every 5°).
 pub const MAX_COURSES: usize = 72;
+/// Allowed `simulation.step`, seconds: RK4 on the 6-DoF REMUS 100 is stable at full speed with
+/// full fins up to 0.1 s and not at 0.3 s; below 1 ms a step only costs time (the model's
+/// fastest motions, pitch and yaw under full fins, take tenths of a second).
+pub const SIM_STEP: (f64, f64) = (0.001, 0.2);
+/// Allowed `navigation.sample_period`, seconds: DVL, compass and depth sensors sample at
+/// 0.1–100 Hz.
+pub const SAMPLE_PERIOD: (f64, f64) = (0.01, 10.0);
+/// Allowed `navigation.acoustic_period`, seconds: a cycle shorter than a second cannot carry
+/// a ping over a kilometre (sound travels 1.5 km/s); one longer than an hour leaves dead
+/// reckoning uncorrected for a whole mission.
+pub const ACOUSTIC_PERIOD: (f64, f64) = (1.0, 3600.0);
+/// Allowed standard deviations of `navigation.gps_noise`, `initial_noise` and `range_noise`,
+/// metres: the estimators take standard deviations well inside [1e-9, 1e9] m.
+pub const POSITION_NOISE: (f64, f64) = (0.001, 1000.0);
 
 /// The range of every integer key, as [`validate`] checks it: (dotted key, least, largest).
 /// The deserialiser's errors for such a key (a negative or fractional number) name the range
@@ -79,8 +93,14 @@ struct Checker {
     out: Vec<Violation>,
 }
 
+/// `x` for a person: plain, or in scientific notation when tiny or huge (1e-300, not 300
+/// zeros).
 fn num(x: f64) -> String {
-    format!("{x}")
+    if x != 0.0 && x.is_finite() && (x.abs() < 1e-4 || x.abs() >= 1e16) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
 }
 
 fn arr(xs: &[f64]) -> String {
@@ -109,6 +129,16 @@ impl Checker {
         if !(x.is_finite() && ok) {
             self.push(key, num(x), allowed, related);
         }
+    }
+
+    /// A float in `[lo, hi]` (in `unit`): "allowed from lo to hi unit (what)".
+    fn between(&mut self, key: &str, x: f64, (lo, hi): (f64, f64), unit: &str, what: &str) {
+        self.float(
+            key,
+            x,
+            (lo..=hi).contains(&x),
+            format!("allowed from {} to {} {unit} ({what})", num(lo), num(hi)),
+        );
     }
 
     fn positive(&mut self, key: &str, x: f64, what: &str) {
@@ -666,8 +696,19 @@ fn sim(c: &mut Checker, s: &Scenario) {
         }
     }
     let n = &s.navigation;
-    c.positive("navigation.sample_period", n.sample_period, "of seconds");
-    c.non_negative("navigation.dvl_noise", n.dvl_noise, "m/s");
+    c.between(
+        "navigation.sample_period",
+        n.sample_period,
+        SAMPLE_PERIOD,
+        "s",
+        "sampling of the DVL, compass, depth sensor and GPS",
+    );
+    c.float(
+        "navigation.dvl_noise",
+        n.dvl_noise,
+        (0.0..=1.0).contains(&n.dvl_noise),
+        "allowed from 0 to 1 m/s (1σ of the DVL's velocity noise)",
+    );
     c.float(
         "navigation.dvl_scale",
         n.dvl_scale,
@@ -679,20 +720,44 @@ fn sim(c: &mut Checker, s: &Scenario) {
         n.dvl_max_altitude,
         "of metres",
     );
-    c.non_negative("navigation.heading_noise", n.heading_noise, "rad");
+    c.float(
+        "navigation.heading_noise",
+        n.heading_noise,
+        (0.0..=0.5).contains(&n.heading_noise),
+        "allowed from 0 to 0.5 rad (1σ of the compass noise)",
+    );
     c.float(
         "navigation.heading_bias",
         n.heading_bias,
         (0.0..0.5).contains(&n.heading_bias),
         "must be a number of radians with 0 ≤ value < 0.5 (1σ of the compass bias)",
     );
-    c.non_negative("navigation.depth_noise", n.depth_noise, "metres");
-    c.positive("navigation.gps_noise", n.gps_noise, "of metres");
-    c.positive("navigation.initial_noise", n.initial_noise, "of metres");
-    c.positive(
+    c.float(
+        "navigation.depth_noise",
+        n.depth_noise,
+        (0.0..=100.0).contains(&n.depth_noise),
+        "allowed from 0 to 100 m (1σ of the depth sensor's noise)",
+    );
+    c.between(
+        "navigation.gps_noise",
+        n.gps_noise,
+        POSITION_NOISE,
+        "m",
+        "1σ of the USV's GPS",
+    );
+    c.between(
+        "navigation.initial_noise",
+        n.initial_noise,
+        POSITION_NOISE,
+        "m",
+        "1σ of each AUV's start fix",
+    );
+    c.between(
         "navigation.acoustic_period",
         n.acoustic_period,
-        "of seconds",
+        ACOUSTIC_PERIOD,
+        "s",
+        "the acoustic cycle: one ping per pair and one estimated position per vehicle each cycle",
     );
     if n.sample_period > 0.0
         && n.acoustic_period > 0.0
@@ -709,7 +774,13 @@ fn sim(c: &mut Checker, s: &Scenario) {
         );
     }
     c.positive("navigation.sound_speed", n.sound_speed, "of m/s");
-    c.positive("navigation.range_noise", n.range_noise, "of metres");
+    c.between(
+        "navigation.range_noise",
+        n.range_noise,
+        POSITION_NOISE,
+        "m",
+        "1σ of an acoustic range",
+    );
     c.float(
         "navigation.packet_success",
         n.packet_success,
@@ -718,13 +789,19 @@ fn sim(c: &mut Checker, s: &Scenario) {
     );
     c.positive("navigation.range_falloff", n.range_falloff, "(an exponent)");
     let step = s.simulation.step;
-    c.float(
+    c.between(
         "simulation.step",
         step,
-        step > 0.0 && step <= 0.2,
-        "must be a number of seconds with 0 < step ≤ 0.2 (RK4 step of the 6-DoF model)",
+        SIM_STEP,
+        "s",
+        "the RK4 step of the 6-DoF model: stable up to 0.2 s, and finer than 0.001 s only \
+         costs time",
     );
-    if step > 0.0 && n.sample_period > 0.0 && !whole_multiple(n.sample_period, step) {
+    if step >= SIM_STEP.0
+        && step <= SIM_STEP.1
+        && n.sample_period > 0.0
+        && !whole_multiple(n.sample_period, step)
+    {
         c.push(
             "simulation.step",
             num(step),

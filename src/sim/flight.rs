@@ -1,12 +1,14 @@
 //! Flying a plan: every AUV's 6-DoF model under its tracking controller in the current, the USV
 //! on its path, sampled at the navigation sensors' rate.
 
+use super::budget::Cost;
 use super::control::Controller;
 use super::current::CurrentField;
 use super::reference::Reference;
 use super::remus::{self, Remus100, RigidState};
 use crate::plan::Plan;
 use crate::seafloor::Seafloor;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// One AUV at one sample time, in shoal's frame (x east, y north, z up).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,20 +40,38 @@ pub struct Flight {
     pub usv: Vec<[f64; 3]>,
 }
 
-/// Fly `reference` from `plan`'s initial state: RK4 steps of `step` seconds, samples every
-/// `sample_period` seconds (a whole number of steps).
+/// Why a flight stopped before the end of the mission.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stopped {
+    /// The cancel flag was raised.
+    Cancelled,
+    /// An AUV's 6-DoF state stopped being finite: the model diverged (in a current it cannot
+    /// fly against, say).
+    Diverged {
+        /// The AUV.
+        auv: usize,
+        /// The last sample time at which its state was finite, s.
+        time: f64,
+        /// The current there, m/s (x east, y north, z up).
+        current: [f64; 3],
+    },
+}
+
+/// Fly `reference` from `plan`'s initial state: RK4 steps of `step` seconds, `cost.substeps`
+/// of them per sample, `cost.samples` samples after t = 0, every `cost.sample_period` seconds
+/// (the counts of [`super::budget::Cost`], checked against their limits). Stops at the next
+/// sample once `cancel` is raised, or when an AUV's state is no longer finite.
+#[allow(clippy::too_many_arguments)]
 pub fn fly(
     plan: &Plan,
     reference: &Reference,
     floor: &Seafloor,
     current: &CurrentField,
     model: &Remus100,
-    step: f64,
-    sample_period: f64,
-) -> Flight {
-    let duration = reference.duration();
-    let samples = (duration / sample_period).round() as usize;
-    let substeps = ((sample_period / step).round() as usize).max(1);
+    cost: &Cost,
+    cancel: Option<&AtomicBool>,
+) -> Result<Flight, Stopped> {
+    let (samples, substeps, sample_period) = (cost.samples, cost.substeps, cost.sample_period);
     let h = sample_period / substeps as f64;
     let times: Vec<f64> = (0..=samples).map(|i| i as f64 * sample_period).collect();
     let usv = times
@@ -61,32 +81,43 @@ pub fn fly(
             [p[0], p[1], 0.0]
         })
         .collect();
-    let auvs = (0..reference.auvs())
-        .map(|n| {
-            let start = &plan.initial.auvs[n];
-            let mut s = initial_state(start.position, start.velocity, reference, n);
-            let mut ctl = Controller::new(model);
-            let mut out = Vec::with_capacity(times.len());
-            let mut thrust = 0.0;
-            for (i, &t) in times.iter().enumerate() {
-                out.push(sample(model, floor, current, &s, reference, n, t, thrust));
-                if i == samples {
-                    break;
-                }
-                for j in 0..substeps {
-                    let tj = t + j as f64 * h;
-                    let p = remus::shoal_from_ned([s.eta[0], s.eta[1], s.eta[2]]);
-                    let c = current.at(p);
-                    let r = reference.auv(n, tj);
-                    let a = ctl.command(model, &s, &r, c, h);
-                    thrust = a.thrust;
-                    s = model.step(&s, &a, remus::ned_from_shoal(c), h);
-                }
+    let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let mut auvs = Vec::with_capacity(reference.auvs());
+    for n in 0..reference.auvs() {
+        let start = &plan.initial.auvs[n];
+        let mut s = initial_state(start.position, start.velocity, reference, n);
+        let mut ctl = Controller::new(model);
+        let mut out = Vec::with_capacity(times.len());
+        let mut thrust = 0.0;
+        for (i, &t) in times.iter().enumerate() {
+            if cancelled() {
+                return Err(Stopped::Cancelled);
             }
-            out
-        })
-        .collect();
-    Flight { times, auvs, usv }
+            out.push(sample(model, floor, current, &s, reference, n, t, thrust));
+            if i == samples {
+                break;
+            }
+            for j in 0..substeps {
+                let tj = t + j as f64 * h;
+                let p = remus::shoal_from_ned([s.eta[0], s.eta[1], s.eta[2]]);
+                let c = current.at(p);
+                let r = reference.auv(n, tj);
+                let a = ctl.command(model, &s, &r, c, h);
+                thrust = a.thrust;
+                s = model.step(&s, &a, remus::ned_from_shoal(c), h);
+            }
+            if !s.eta.iter().chain(&s.nu).all(|x| x.is_finite()) {
+                let last = out[out.len() - 1].position;
+                return Err(Stopped::Diverged {
+                    auv: n,
+                    time: t,
+                    current: current.at(last),
+                });
+            }
+        }
+        auvs.push(out);
+    }
+    Ok(Flight { times, auvs, usv })
 }
 
 /// Level flight at the planned start: surge at the planned horizontal speed, heading along the

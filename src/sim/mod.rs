@@ -7,6 +7,7 @@
 //! - [`estimate`]: the navigation factor graph (batch, factrs) and an EKF over the same
 //!   measurements.
 
+pub mod budget;
 pub mod control;
 pub mod current;
 pub mod estimate;
@@ -21,13 +22,46 @@ pub mod run;
 pub mod summary;
 
 pub use record::SimRecord;
-pub use run::{monte_carlo, simulate, SimError};
+pub use run::{fly_plan, monte_carlo, simulate, Gate, Options, Progress, SimError};
 
-/// Write `record` to `path` as JSON, atomically (a temporary file renamed into place).
+/// Write `record` to `path` as JSON, atomically (a temporary file renamed into place). The text
+/// is first read back as `shoal view --sim` reads it: a record that would not read back (a
+/// non-finite number, which JSON writes as null) is refused, naming the first such field,
+/// instead of written.
 pub fn write(record: &SimRecord, path: &std::path::Path) -> Result<(), crate::output::OutputError> {
-    let text = serde_json::to_vec(record).map_err(|e| crate::output::OutputError::Write {
+    let fail = |why: String| crate::output::OutputError::Write {
         path: path.to_path_buf(),
-        source: std::io::Error::other(e),
-    })?;
+        source: std::io::Error::other(why),
+    };
+    let text = serde_json::to_vec(record).map_err(|e| fail(e.to_string()))?;
+    if let Err(e) = serde_json::from_slice::<SimRecord>(&text) {
+        let field = serde_json::from_slice::<serde_json::Value>(&text)
+            .ok()
+            .and_then(|v| first_null(&v, String::new()));
+        return Err(fail(match field {
+            Some(f) => format!("the record's {f} is not a finite number, which JSON cannot hold"),
+            None => format!("the record would not read back: {e}"),
+        }));
+    }
     crate::output::write_atomic(path, &text)
+}
+
+/// The path (`flight.executed[0][3][2]`) of the first null in `v`.
+fn first_null(v: &serde_json::Value, at: String) -> Option<String> {
+    match v {
+        serde_json::Value::Null => Some(at),
+        serde_json::Value::Array(xs) => xs
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| first_null(x, format!("{at}[{i}]"))),
+        serde_json::Value::Object(m) => m.iter().find_map(|(k, x)| {
+            let key = if at.is_empty() {
+                k.clone()
+            } else {
+                format!("{at}.{k}")
+            };
+            first_null(x, key)
+        }),
+        _ => None,
+    }
 }

@@ -2,7 +2,7 @@
 //! metrics per estimate, and their mean and spread.
 
 use super::policy::Policy;
-use super::record::EstimateRecord;
+use super::record::{EstimateFailure, EstimateRecord};
 use serde::{Deserialize, Serialize};
 
 /// Mean, standard deviation (n − 1) and range of one metric over the runs.
@@ -64,20 +64,45 @@ pub struct RunEntry {
     pub mean_nees: f64,
 }
 
+/// An estimate that failed in one run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunFailure {
+    /// "final" or "step1".
+    pub flown: String,
+    /// The policy.
+    pub policy: Policy,
+    /// "factor_graph" or "ekf".
+    pub estimator: String,
+    /// Why, in a few words ([`EstimateFailure::brief`]).
+    pub error: String,
+}
+
 /// One run's metrics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunMetrics {
     /// The run's seed.
     pub seed: u64,
-    /// One per estimate, in the order of `SimRecord::estimates`.
+    /// One per estimate made, in the order of `SimRecord::estimates`.
     pub entries: Vec<RunEntry>,
+    /// The estimates that failed in this run.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub failed: Vec<RunFailure>,
 }
 
 impl RunMetrics {
-    /// The metrics of a run's `estimates`.
-    pub fn of(seed: u64, estimates: &[EstimateRecord]) -> RunMetrics {
+    /// The metrics of a run's `estimates`, and its `failures`.
+    pub fn of(seed: u64, estimates: &[EstimateRecord], failures: &[EstimateFailure]) -> RunMetrics {
         RunMetrics {
             seed,
+            failed: failures
+                .iter()
+                .map(|f| RunFailure {
+                    flown: f.flown.clone(),
+                    policy: f.policy,
+                    estimator: f.estimator.clone(),
+                    error: f.brief(),
+                })
+                .collect(),
             entries: estimates
                 .iter()
                 .map(|e| RunEntry {
@@ -111,6 +136,34 @@ pub struct Summary {
     pub window_end_rmse_m: Vec<Stat>,
     /// Mean NEES.
     pub mean_nees: Stat,
+    /// Runs in which this estimate failed; the statistics are over the others (all zero when
+    /// it failed in every run).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub failed_runs: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// Where an estimate comes in the reports: the final stages' flight first, the policies in
+/// [`Policy::EVERY`]'s order, the factor graph before the EKF.
+fn rank(flown: &str, policy: Policy, estimator: &str) -> (usize, usize, usize, String) {
+    let f = match flown {
+        "final" => 0,
+        "step1" => 1,
+        _ => 2,
+    };
+    let p = Policy::EVERY
+        .iter()
+        .position(|&x| x == policy)
+        .unwrap_or(Policy::EVERY.len());
+    let e = match estimator {
+        "factor_graph" => 0,
+        "ekf" => 1,
+        _ => 2,
+    };
+    (f, p, e, format!("{flown}/{estimator}"))
 }
 
 /// Every run and the summary.
@@ -125,30 +178,57 @@ pub struct MonteCarlo {
 }
 
 impl MonteCarlo {
-    /// Summarise `runs` (every run lists the same estimates in the same order).
+    /// Summarise `runs`: one summary per estimate made or failed in any run, in the order of
+    /// the reports, over the runs in which it was made.
     pub fn of(runs: Vec<RunMetrics>) -> MonteCarlo {
-        let summary = match runs.first() {
-            None => Vec::new(),
-            Some(first) => (0..first.entries.len())
-                .map(|i| {
-                    let col = |f: &dyn Fn(&RunEntry) -> f64| -> Stat {
-                        Stat::of(&runs.iter().map(|r| f(&r.entries[i])).collect::<Vec<_>>())
-                    };
-                    let e = &first.entries[i];
-                    Summary {
-                        flown: e.flown.clone(),
-                        policy: e.policy,
-                        estimator: e.estimator.clone(),
-                        team_rmse_m: col(&|x| x.team_rmse_m),
-                        team_max_m: col(&|x| x.team_max_m),
-                        window_end_rmse_m: (0..e.window_end_rmse_m.len())
-                            .map(|w| col(&|x| x.window_end_rmse_m[w]))
-                            .collect(),
-                        mean_nees: col(&|x| x.mean_nees),
-                    }
-                })
-                .collect(),
-        };
+        let mut keys: Vec<(String, Policy, String)> = Vec::new();
+        for r in &runs {
+            let made = r.entries.iter().map(|e| (&e.flown, e.policy, &e.estimator));
+            let failed = r.failed.iter().map(|e| (&e.flown, e.policy, &e.estimator));
+            for (f, p, e) in made.chain(failed) {
+                if !keys.iter().any(|k| &k.0 == f && k.1 == p && &k.2 == e) {
+                    keys.push((f.clone(), p, e.clone()));
+                }
+            }
+        }
+        keys.sort_by_key(|(f, p, e)| rank(f, *p, e));
+        let summary = keys
+            .into_iter()
+            .map(|(flown, policy, estimator)| {
+                let made: Vec<&RunEntry> = runs
+                    .iter()
+                    .filter_map(|r| {
+                        r.entries.iter().find(|x| {
+                            x.flown == flown && x.policy == policy && x.estimator == estimator
+                        })
+                    })
+                    .collect();
+                let failed_runs = runs
+                    .iter()
+                    .filter(|r| {
+                        r.failed.iter().any(|x| {
+                            x.flown == flown && x.policy == policy && x.estimator == estimator
+                        })
+                    })
+                    .count();
+                let col = |f: &dyn Fn(&RunEntry) -> Option<f64>| -> Stat {
+                    Stat::of(&made.iter().filter_map(|x| f(x)).collect::<Vec<_>>())
+                };
+                let windows = made.first().map_or(0, |x| x.window_end_rmse_m.len());
+                Summary {
+                    team_rmse_m: col(&|x| Some(x.team_rmse_m)),
+                    team_max_m: col(&|x| Some(x.team_max_m)),
+                    window_end_rmse_m: (0..windows)
+                        .map(|w| col(&|x| x.window_end_rmse_m.get(w).copied()))
+                        .collect(),
+                    mean_nees: col(&|x| Some(x.mean_nees)),
+                    failed_runs,
+                    flown,
+                    policy,
+                    estimator,
+                }
+            })
+            .collect();
         MonteCarlo {
             runs: runs.len(),
             summary,

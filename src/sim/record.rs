@@ -38,11 +38,62 @@ pub struct SimRecord {
     /// The flight of the plan's Step 1 paths (no chain), for comparison.
     pub step1_flight: FlightRecord,
     /// Each estimate: per policy and estimator on the final stages' flight, and the
-    /// `all_links` policy on Step 1's.
+    /// `all_links` policy on Step 1's; those that failed are in `failed_estimates` instead.
     pub estimates: Vec<EstimateRecord>,
+    /// The estimates of the first run that failed (an estimator that did not converge, say),
+    /// each with why.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub failed_estimates: Vec<EstimateFailure>,
+    /// The families the plan's check failed when it was flown all the same (`shoal simulate
+    /// --unchecked`); empty for a plan that passed (or was not checked).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub check_failures: Vec<String>,
+    /// Set when the runs were stopped before all were done (Ctrl-C): the record and the
+    /// summary hold the runs that finished.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub incomplete: Option<Incomplete>,
     /// With `--runs R` > 1: each run's metrics and their mean and spread.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub monte_carlo: Option<super::montecarlo::MonteCarlo>,
+}
+
+/// An estimate that could not be made.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EstimateFailure {
+    /// Which ranges it would have used.
+    pub policy: Policy,
+    /// "factor_graph" or "ekf".
+    pub estimator: String,
+    /// "final" or "step1".
+    pub flown: String,
+    /// Ranges it would have used.
+    pub ranges_used: usize,
+    /// For an estimator that did not converge, the iterations it took before it stopped.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub iterations: Option<usize>,
+    /// Why, in full.
+    pub error: String,
+}
+
+impl EstimateFailure {
+    /// Why, in a few words: "did not converge after 200 iterations", or the error.
+    pub fn brief(&self) -> String {
+        match self.iterations {
+            Some(n) => format!("did not converge after {n} iterations"),
+            None => self.error.clone(),
+        }
+    }
+}
+
+/// Runs stopped before all were done.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Incomplete {
+    /// Runs asked for (`--runs`).
+    pub runs_asked: usize,
+    /// Runs finished, whose metrics the record holds.
+    pub runs_finished: usize,
+    /// Why: "interrupted".
+    pub reason: String,
 }
 
 /// One flight: the executed and planned positions at each epoch, what was measured, and how

@@ -1,19 +1,27 @@
 //! `shoal simulate`'s job: fly a plan (and its Step 1 paths), measure, estimate under every
 //! policy with both estimators, and score it all.
+//!
+//! Before anything is flown, [`fly_plan`] validates the plan's scenario, counts the cost
+//! ([`super::budget`]) and runs the plan's check (as its [`Gate`] says). An estimator that fails
+//! (Levenberg–Marquardt that does not converge, say) does not stop the simulation: it is
+//! recorded for its policy in [`SimRecord::failed_estimates`], and the others are kept.
 
+use super::budget::Cost;
 use super::current::{mission_bounds, CurrentError, CurrentField, CURRENT_MARGIN};
 use super::estimate::{self, Cov3, Estimate, EstimateError};
-use super::flight::{fly, Flight};
+use super::flight::{fly, Flight, Stopped};
 use super::measure::{measure, Measurements};
 use super::policy::{initial_start, problem, Policy};
 use super::record::{
-    packed, EstimateRecord, FlightMetrics, FlightRecord, NavMetrics, SimRecord, FORMAT,
+    packed, EstimateFailure, EstimateRecord, FlightMetrics, FlightRecord, Incomplete, NavMetrics,
+    SimRecord, FORMAT,
 };
 use super::reference::{Flown, Reference};
 use super::remus::Remus100;
 use crate::plan::Plan;
 use crate::scenario::validate_whole_multiple;
 use crate::seafloor::Seafloor;
+use std::sync::atomic::{AtomicBool, Ordering};
 use thiserror::Error;
 
 /// Why a plan could not be simulated.
@@ -29,6 +37,89 @@ pub enum SimError {
         /// What is allowed.
         why: String,
     },
+    /// A setting of the plan file's own scenario outside its allowed range (a plan file edited
+    /// by hand, or written by another version).
+    #[error("{plan}: {key} = {value}: {allowed}")]
+    PlanSetting {
+        /// The plan file.
+        plan: String,
+        /// The dotted scenario key.
+        key: String,
+        /// Its value.
+        value: String,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// A count of the simulation (steps, samples, positions) above its limit.
+    #[error("{plan}; {what}, above the {limit} allowed ({instead})")]
+    TooLong {
+        /// The plan file and how long it lasts.
+        plan: String,
+        /// The count, and the setting that makes it.
+        what: String,
+        /// The limit.
+        limit: String,
+        /// What would bring the count down.
+        instead: String,
+    },
+    /// `--runs` times the positions of a run above [`super::budget::MAX_RUN_POSITIONS`].
+    #[error(
+        "--runs {runs}: {runs} runs × {positions} positions per run = {work} positions to \
+         estimate, above the {limit} allowed (at most {most} runs of this plan)"
+    )]
+    TooManyRuns {
+        /// The runs asked for.
+        runs: usize,
+        /// The positions of one run.
+        positions: String,
+        /// Their product.
+        work: String,
+        /// The limit.
+        limit: String,
+        /// The most runs allowed for this plan.
+        most: usize,
+    },
+    /// The plan fails its check ([`crate::check::check_plan`]).
+    #[error(
+        "{plan} fails its check ({}): simulate flies only plans that pass; add --unchecked to \
+         fly it anyway",
+        failing.join(", ")
+    )]
+    FailsCheck {
+        /// The plan file.
+        plan: String,
+        /// The failing families.
+        failing: Vec<String>,
+    },
+    /// The plan's structure is broken: it cannot be flown even unchecked.
+    #[error("{plan} is malformed ({problem}): it cannot be flown, even with --unchecked")]
+    Malformed {
+        /// The plan file.
+        plan: String,
+        /// The check's first structural problem.
+        problem: String,
+    },
+    /// The 6-DoF model diverged.
+    #[error(
+        "flying {flown} of {plan}: AUV {auv}'s 6-DoF state stopped being finite after t = {time} \
+         s, in a current of {speed:.2} m/s (a REMUS 100 flies at up to about 2.5 m/s through \
+         the water; a current it cannot stem, or a simulation.step too coarse for the model)"
+    )]
+    Diverged {
+        /// The plan file.
+        plan: String,
+        /// Which flight: "its final stages" or "its Step 1 paths".
+        flown: &'static str,
+        /// The AUV.
+        auv: usize,
+        /// The last time its state was finite, s.
+        time: f64,
+        /// The current's speed there, m/s.
+        speed: f64,
+    },
+    /// Cancelled before any run had finished: there is nothing to record.
+    #[error("interrupted before the first run finished")]
+    Interrupted,
     /// A `--set` of a key `shoal simulate` does not read.
     #[error(
         "--set {0}: shoal simulate changes only the [current], [navigation] and [simulation] \
@@ -38,16 +129,6 @@ pub enum SimError {
     /// A `--set` whose value is not allowed.
     #[error(transparent)]
     Scenario(#[from] crate::scenario::ScenarioError),
-    /// An estimator failed.
-    #[error("the {estimator} estimate under policy {policy}: {source}")]
-    Estimate {
-        /// Which estimator.
-        estimator: &'static str,
-        /// Which policy.
-        policy: &'static str,
-        /// Why.
-        source: EstimateError,
-    },
     /// The current's grid files could not be used.
     #[error(transparent)]
     Current(#[from] CurrentError),
@@ -75,6 +156,72 @@ pub fn with_settings(plan: &Plan, plan_name: &str, overrides: &[String]) -> Resu
     Ok(p)
 }
 
+/// Whether [`fly_plan`] checks the plan ([`crate::check::check_plan`]) before flying it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Gate {
+    /// Fly it unchecked: the caller has checked it (or made it).
+    Trust,
+    /// Refuse a plan that fails its check ([`SimError::FailsCheck`]).
+    Check,
+    /// Fly a plan that fails its check all the same, and record the failing families in
+    /// [`SimRecord::check_failures`]; a plan whose structure is broken is still refused
+    /// ([`SimError::Malformed`]).
+    Unchecked,
+}
+
+/// How [`fly_plan`] flies a plan.
+#[derive(Debug, Clone, Copy)]
+pub struct Options<'a> {
+    /// The seed of the first run; run i has seed + i.
+    pub seed: u64,
+    /// Monte Carlo runs (≥ 1).
+    pub runs: usize,
+    /// Whether the plan is checked first.
+    pub gate: Gate,
+    /// Raised to stop: checked at every sample of the flights and between estimates. The runs
+    /// finished by then are returned, marked [`SimRecord::incomplete`]; with none finished,
+    /// [`SimError::Interrupted`].
+    pub cancel: Option<&'a AtomicBool>,
+}
+
+impl Options<'_> {
+    /// `runs` runs from `seed`, the plan trusted, no cancel flag.
+    pub fn new(seed: u64, runs: usize) -> Options<'static> {
+        Options {
+            seed,
+            runs,
+            gate: Gate::Trust,
+            cancel: None,
+        }
+    }
+}
+
+/// What [`fly_plan`] is doing, for a progress display.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Progress<'a> {
+    /// The plan fails its check and is flown all the same ([`Gate::Unchecked`]).
+    Unchecked {
+        /// The failing families.
+        failing: &'a [String],
+    },
+    /// The cost is counted and flying starts.
+    Counted(&'a Cost),
+    /// A flight starts: "its final stages" or "its Step 1 paths".
+    Flying(&'static str),
+    /// A run's estimates start.
+    Estimating {
+        /// The run, from 0.
+        run: usize,
+    },
+    /// A run has finished.
+    RunDone {
+        /// Runs finished so far.
+        finished: usize,
+        /// Runs asked for.
+        runs: usize,
+    },
+}
+
 /// Simulate `plan` (read from `plan_name`) over `floor` with every draw from `seed`.
 pub fn simulate(
     plan: &Plan,
@@ -86,9 +233,7 @@ pub fn simulate(
 }
 
 /// Fly `plan` once and measure and estimate it `runs` times, with seeds `seed`, `seed + 1`, …:
-/// the record of the first run, with the runs' summary when `runs` > 1. The flight is the same
-/// in every run (the current and the controller are deterministic); the sensor errors, the
-/// noise and the packets are drawn anew.
+/// [`fly_plan`] with the plan trusted, no cancel flag and no progress.
 pub fn monte_carlo(
     plan: &Plan,
     plan_name: &str,
@@ -96,9 +241,93 @@ pub fn monte_carlo(
     seed: u64,
     runs: usize,
 ) -> Result<SimRecord, SimError> {
+    fly_plan(
+        plan,
+        plan_name,
+        floor,
+        &Options::new(seed, runs),
+        &mut |_| {},
+    )
+}
+
+/// The check's verdict for [`fly_plan`]: the failing families (empty when it passes), or why
+/// the plan may not be flown.
+fn gate(
+    plan: &Plan,
+    plan_name: &str,
+    floor: &Seafloor,
+    gate: Gate,
+) -> Result<Vec<String>, SimError> {
+    if gate == Gate::Trust {
+        return Ok(Vec::new());
+    }
+    let report = crate::check::check_plan(plan, floor);
+    if report.passed() {
+        return Ok(Vec::new());
+    }
+    if let Some(problem) = report.problems.first() {
+        return Err(SimError::Malformed {
+            plan: plan_name.into(),
+            problem: problem.clone(),
+        });
+    }
+    let failing: Vec<String> = report
+        .failures()
+        .iter()
+        .map(|f| f.name.to_string())
+        .collect();
+    match gate {
+        Gate::Unchecked => Ok(failing),
+        _ => Err(SimError::FailsCheck {
+            plan: plan_name.into(),
+            failing,
+        }),
+    }
+}
+
+/// The scenario's own rules on `plan`'s scenario (a plan file is read without them).
+fn validated(plan: &Plan, plan_name: &str) -> Result<(), SimError> {
+    match crate::scenario::validate(&plan.scenario) {
+        Ok(()) => Ok(()),
+        Err(v) => {
+            let v = &v[0];
+            Err(SimError::PlanSetting {
+                plan: plan_name.into(),
+                key: v.key.clone(),
+                value: v.value.clone(),
+                allowed: v.allowed.clone(),
+            })
+        }
+    }
+}
+
+/// The name of a flight in messages.
+fn flight_name(flown: Flown) -> &'static str {
+    match flown {
+        Flown::Final => "its final stages",
+        Flown::Step1 => "its Step 1 paths",
+    }
+}
+
+/// Fly `plan` (read from `plan_name`; relative current grid files are found beside it) over
+/// `floor`, then measure and estimate it `options.runs` times with seeds `options.seed`,
+/// `options.seed + 1`, …: the record of the first run, with the runs' summary when more than
+/// one was asked for. The flight is the same in every run (the current and the controller are
+/// deterministic); the sensor errors, the noise and the packets are drawn anew.
+///
+/// First the plan's scenario is validated, the cost counted ([`Cost::of`]) and the plan
+/// checked as `options.gate` says; each refusal is a [`SimError`] naming the setting.
+pub fn fly_plan(
+    plan: &Plan,
+    plan_name: &str,
+    floor: &Seafloor,
+    options: &Options,
+    on_progress: &mut dyn FnMut(Progress),
+) -> Result<SimRecord, SimError> {
     let s = &plan.scenario;
     let nav = &s.navigation;
-    let window = s.horizon.steps as f64 * s.horizon.dt;
+    let runs = options.runs.max(1);
+    validated(plan, plan_name)?;
     if !validate_whole_multiple(s.horizon.dt, nav.acoustic_period) {
         return Err(SimError::Setting {
             key: "navigation.acoustic_period".into(),
@@ -117,35 +346,58 @@ pub fn monte_carlo(
             why: "the plan has no window to fly".into(),
         });
     }
+    let cost = Cost::of(plan, plan_name, runs)?;
+    let check_failures = gate(plan, plan_name, floor, options.gate)?;
+    if !check_failures.is_empty() {
+        on_progress(Progress::Unchecked {
+            failing: &check_failures,
+        });
+    }
+    on_progress(Progress::Counted(&cost));
+    let cancelled = || options.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let window = s.horizon.steps as f64 * s.horizon.dt;
     let model = Remus100::default();
-    // relative current grid files are found next to the plan
     let plan_dir = std::path::Path::new(plan_name)
         .parent()
         .unwrap_or(std::path::Path::new(""));
     let current = CurrentField::load(&s.current, plan_dir, mission_bounds(plan, CURRENT_MARGIN))?;
-    let per_window = (window / nav.acoustic_period).round() as usize;
-    let flights: Vec<(Flown, Reference, Flight)> = [Flown::Final, Flown::Step1]
-        .into_iter()
-        .map(|flown| {
-            let reference = Reference::new(plan, flown);
-            let flight = fly(
-                plan,
-                &reference,
-                floor,
-                &current,
-                &model,
-                s.simulation.step,
-                nav.sample_period,
-            );
-            (flown, reference, flight)
-        })
-        .collect();
+    let per_window = ((window / nav.acoustic_period).round() as usize).max(1);
+    let mut flights: Vec<(Flown, Reference, Flight)> = Vec::with_capacity(2);
+    for flown in [Flown::Final, Flown::Step1] {
+        on_progress(Progress::Flying(flight_name(flown)));
+        let reference = Reference::new(plan, flown);
+        let flight = fly(
+            plan,
+            &reference,
+            floor,
+            &current,
+            &model,
+            &cost,
+            options.cancel,
+        )
+        .map_err(|stop| match stop {
+            Stopped::Cancelled => SimError::Interrupted,
+            Stopped::Diverged { auv, time, current } => SimError::Diverged {
+                plan: plan_name.into(),
+                flown: flight_name(flown),
+                auv,
+                time,
+                speed: current[0].hypot(current[1]),
+            },
+        })?;
+        flights.push((flown, reference, flight));
+    }
 
     let mut first: Option<SimRecord> = None;
     let mut all_runs = Vec::with_capacity(runs);
-    for run in 0..runs {
-        let run_seed = seed.wrapping_add(run as u64);
+    'runs: for run in 0..runs {
+        if cancelled() {
+            break;
+        }
+        on_progress(Progress::Estimating { run });
+        let run_seed = options.seed.wrapping_add(run as u64);
         let mut estimates = Vec::new();
+        let mut failures = Vec::new();
         let mut records = Vec::new();
         for (flown, reference, flight) in &flights {
             let m = measure(
@@ -171,6 +423,9 @@ pub fn monte_carlo(
                 Flown::Step1 => &[Policy::AllLinks],
             };
             for &policy in policies {
+                if cancelled() {
+                    break 'runs;
+                }
                 let whole = problem(
                     &m,
                     nav,
@@ -180,19 +435,40 @@ pub fn monte_carlo(
                     m.epochs - 1,
                     &initial_start(&m, nav),
                 );
-                let ekf = estimate::filter(&whole).map_err(|source| SimError::Estimate {
-                    estimator: "ekf",
-                    policy: policy.name(),
-                    source,
-                })?;
-                let fg = smooth_mission(&whole, policy, &ekf)?;
-                for (name, est, used) in [
-                    ("factor_graph", fg.0, fg.1),
-                    ("ekf", ekf, whole.ranges.len()),
-                ] {
-                    estimates.push(record_estimate(
-                        policy, name, *flown, used, est, flight, &m, per_window,
-                    ));
+                let used = whole.ranges.len();
+                let failed = |estimator: &str, e: EstimateError| EstimateFailure {
+                    policy,
+                    estimator: estimator.into(),
+                    flown: flown_name(*flown).into(),
+                    ranges_used: used,
+                    iterations: match e {
+                        EstimateError::NotConverged { iterations, .. } => Some(iterations),
+                        _ => None,
+                    },
+                    error: e.to_string(),
+                };
+                let ekf = estimate::filter(&whole).and_then(finite);
+                // from the filter's estimate, or from dead reckoning when the filter failed
+                let guess = ekf.as_ref().map_or(&[][..], |e| &e.position[..]);
+                let fg = smooth_mission(&whole, guess).and_then(finite);
+                match fg {
+                    Ok(fg) => estimates.push(record_estimate(
+                        policy,
+                        "factor_graph",
+                        *flown,
+                        used,
+                        fg,
+                        flight,
+                        &m,
+                        per_window,
+                    )),
+                    Err(e) => failures.push(failed("factor_graph", e)),
+                }
+                match ekf {
+                    Ok(ekf) => estimates.push(record_estimate(
+                        policy, "ekf", *flown, used, ekf, flight, &m, per_window,
+                    )),
+                    Err(e) => failures.push(failed("ekf", e)),
                 }
             }
             if run == 0 {
@@ -200,16 +476,19 @@ pub fn monte_carlo(
                 records.push(flight_record(flight, &m, metrics));
             }
         }
-        all_runs.push(super::montecarlo::RunMetrics::of(run_seed, &estimates));
+        all_runs.push(super::montecarlo::RunMetrics::of(
+            run_seed, &estimates, &failures,
+        ));
         if run == 0 {
-            let step1_flight = records.pop().expect("two flights");
-            let flight = records.pop().expect("two flights");
+            let (Some(step1_flight), Some(flight)) = (records.pop(), records.pop()) else {
+                unreachable!("two flights are flown");
+            };
             let epochs = flight.usv.len();
             first = Some(SimRecord {
                 format: FORMAT.into(),
                 shoal_version: env!("CARGO_PKG_VERSION").into(),
                 plan: plan_name.into(),
-                seed,
+                seed: options.seed,
                 current: s.current.clone(),
                 navigation: nav.clone(),
                 simulation: s.simulation.clone(),
@@ -221,28 +500,52 @@ pub fn monte_carlo(
                 flight,
                 step1_flight,
                 estimates,
+                failed_estimates: failures,
+                check_failures: check_failures.clone(),
+                incomplete: None,
                 monte_carlo: None,
             });
         }
+        on_progress(Progress::RunDone {
+            finished: run + 1,
+            runs,
+        });
     }
-    let mut record = first.expect("runs ≥ 1");
+    let Some(mut record) = first else {
+        return Err(SimError::Interrupted);
+    };
+    let finished = all_runs.len();
+    if finished < runs {
+        record.incomplete = Some(Incomplete {
+            runs_asked: runs,
+            runs_finished: finished,
+            reason: "interrupted".into(),
+        });
+    }
     if runs > 1 {
         record.monte_carlo = Some(super::montecarlo::MonteCarlo::of(all_runs));
     }
     Ok(record)
 }
 
-/// The factor graph over the whole mission from the filter's estimate `guess`: every
-/// measurement, past and future (what the team's data tell after the mission). Solved window
-/// by window, handing each window's last epoch on as independent marginals, it crept up over
-/// windows (2.8, 3.9, 5.7 m at the ends of three windows against 2.2, 2.2, 2.3 m in one
-/// batch, for the same time): the marginals drop the correlations of each AUV's position with
-/// its own biases. Returns the estimate and the ranges used.
+/// "final" or "step1", as sim.json names a flight.
+fn flown_name(flown: Flown) -> &'static str {
+    match flown {
+        Flown::Final => "final",
+        Flown::Step1 => "step1",
+    }
+}
+
+/// The factor graph over the whole mission from the filter's estimate `guess` (from dead
+/// reckoning when empty): every measurement, past and future (what the team's data tell after
+/// the mission). Solved window by window, handing each window's last epoch on as independent
+/// marginals, it crept up over windows (2.8, 3.9, 5.7 m at the ends of three windows against
+/// 2.2, 2.2, 2.3 m in one batch, for the same time): the marginals drop the correlations of
+/// each AUV's position with its own biases.
 fn smooth_mission(
     whole: &estimate::Problem,
-    policy: Policy,
-    guess: &Estimate,
-) -> Result<(Estimate, usize), SimError> {
+    guess: &[Vec<[f64; 3]>],
+) -> Result<Estimate, EstimateError> {
     // a result one Gauss–Newton step could still improve by up to ½ in ½χ² (a step of one
     // posterior standard deviation in Mahalanobis length, spread over thousands of
     // coordinates) is kept: the estimators are judged on metres of error
@@ -253,27 +556,34 @@ fn smooth_mission(
     };
     // from the filter's estimate: with few ranges, from dead reckoning tens of metres off,
     // Levenberg–Marquardt can settle in a range-only problem's mirror solution
-    let est = estimate::smooth_with(whole, &guess.position, &options).map_err(|source| {
-        SimError::Estimate {
-            estimator: "factor_graph",
-            policy: policy.name(),
-            source,
-        }
-    })?;
-    Ok((est, whole.ranges.len()))
+    estimate::smooth_with(whole, guess, &options)
 }
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
-/// eᵀ C⁻¹ e for a 3×3 covariance (∞ when C is singular).
-fn nees(e: [f64; 3], c: &Cov3) -> f64 {
+/// eᵀ C⁻¹ e for a 3×3 covariance; None when C is not positive definite (rounding can leave
+/// a marginal of a nearly singular problem so).
+fn nees(e: [f64; 3], c: &Cov3) -> Option<f64> {
     let m = nalgebra::Matrix3::from_fn(|i, j| c[i][j]);
     let v = nalgebra::Vector3::from(e);
     m.cholesky()
         .map(|ch| v.dot(&ch.solve(&v)))
-        .unwrap_or(f64::INFINITY)
+        .filter(|x| x.is_finite())
+}
+
+/// `est`, if every position and covariance of it is finite.
+fn finite(est: Estimate) -> Result<Estimate, EstimateError> {
+    let positions = est.position.iter().flatten().flatten();
+    let covariances = est.covariance.iter().flatten().flatten().flatten();
+    if positions.chain(covariances).all(|x| x.is_finite()) {
+        Ok(est)
+    } else {
+        Err(EstimateError::Solver(
+            "its estimate holds a non-finite number".into(),
+        ))
+    }
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -293,7 +603,7 @@ fn record_estimate(
     let mut sq = vec![0.0; m.epochs];
     let mut rmse = vec![0.0; n];
     let mut max = vec![0.0_f64; n];
-    let mut nees_sum = 0.0;
+    let (mut nees_sum, mut nees_count) = (0.0, 0);
     for v in 0..n {
         for e in 0..m.epochs {
             let p = est.position[v][e];
@@ -302,10 +612,13 @@ fn record_estimate(
             sq[e] += d * d / n as f64;
             rmse[v] += d * d / m.epochs as f64;
             max[v] = max[v].max(d);
-            nees_sum += nees(
+            if let Some(x) = nees(
                 [p[0] - t[0], p[1] - t[1], p[2] - t[2]],
                 &est.covariance[v][e],
-            );
+            ) {
+                nees_sum += x;
+                nees_count += 1;
+            }
         }
     }
     let over_time: Vec<f64> = sq.iter().map(|x| x.sqrt()).collect();
@@ -323,11 +636,7 @@ fn record_estimate(
     EstimateRecord {
         policy,
         estimator: estimator.into(),
-        flown: match flown {
-            Flown::Final => "final",
-            Flown::Step1 => "step1",
-        }
-        .into(),
+        flown: flown_name(flown).into(),
         ranges_used,
         metrics: NavMetrics {
             team_rmse_m: team,
@@ -344,7 +653,7 @@ fn record_estimate(
             } else {
                 0.0
             },
-            mean_nees: nees_sum / (n * m.epochs) as f64,
+            mean_nees: nees_sum / nees_count.max(1) as f64,
         },
         position: est.position[..n].to_vec(),
         covariance: est.covariance[..n]

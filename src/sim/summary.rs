@@ -38,6 +38,20 @@ fn flight_line(out: &mut String, name: &str, f: &FlightRecord, eps: f64) {
 /// mean ± standard deviation when there were several runs).
 pub fn table(r: &SimRecord) -> String {
     let mut out = String::new();
+    if !r.check_failures.is_empty() {
+        let _ = writeln!(
+            out,
+            "UNCHECKED: the plan fails its check ({}) and was flown all the same (--unchecked)",
+            r.check_failures.join(", ")
+        );
+    }
+    if let Some(i) = &r.incomplete {
+        let _ = writeln!(
+            out,
+            "INCOMPLETE ({}): {} of {} runs finished; what follows is over those",
+            i.reason, i.runs_finished, i.runs_asked
+        );
+    }
     flight_line(
         &mut out,
         "plan (Step 3) flown",
@@ -93,6 +107,18 @@ pub fn table(r: &SimRecord) -> String {
                     e.metrics.mean_nees
                 );
             }
+            for f in &r.failed_estimates {
+                let _ = writeln!(
+                    out,
+                    "{:<6} {:<15} {:<13} {:>7}  {}: {}",
+                    f.flown,
+                    f.policy.name(),
+                    f.estimator,
+                    f.ranges_used,
+                    f.policy.name(),
+                    f.brief()
+                );
+            }
         }
         Some(mc) => {
             let _ = writeln!(
@@ -100,7 +126,7 @@ pub fn table(r: &SimRecord) -> String {
                 "position error (3-D, m) over {} runs (seeds {}–{}): mean ± standard deviation",
                 mc.runs,
                 r.seed,
-                r.seed + mc.runs as u64 - 1
+                r.seed.wrapping_add(mc.runs.saturating_sub(1) as u64)
             );
             let _ = writeln!(
                 out,
@@ -114,16 +140,31 @@ pub fn table(r: &SimRecord) -> String {
                     .last()
                     .map(pm)
                     .unwrap_or_else(|| "-".into());
+                if s.failed_runs >= mc.runs {
+                    let _ = writeln!(
+                        out,
+                        "{:<6} {:<15} {:<13} {}: failed in every run",
+                        s.flown,
+                        s.policy.name(),
+                        s.estimator,
+                        s.policy.name()
+                    );
+                    continue;
+                }
                 let _ = writeln!(
                     out,
-                    "{:<6} {:<15} {:<13} {:>14} {:>14} {:>14} {:>6.1}",
+                    "{:<6} {:<15} {:<13} {:>14} {:>14} {:>14} {:>6.1}{}",
                     s.flown,
                     s.policy.name(),
                     s.estimator,
                     pm(&s.team_rmse_m),
                     pm(&s.team_max_m),
                     last,
-                    s.mean_nees.mean
+                    s.mean_nees.mean,
+                    match s.failed_runs {
+                        0 => String::new(),
+                        n => format!("  (failed in {n} of {} runs: over the others)", mc.runs),
+                    }
                 );
             }
         }

@@ -55,6 +55,19 @@ pub struct ViewerData {
 /// final stages' flight.
 pub const DEFAULT_ESTIMATE: (Policy, &str, &str) = (Policy::Chain, "factor_graph", "final");
 
+/// The estimates the page shows, in order of preference: the first one the simulation holds
+/// (an estimator that failed leaves its estimate out of sim.json).
+pub const SHOWN_ESTIMATES: [(Policy, &str, &str); 8] = [
+    DEFAULT_ESTIMATE,
+    (Policy::Chain, "ekf", "final"),
+    (Policy::AllLinks, "factor_graph", "final"),
+    (Policy::AllLinks, "ekf", "final"),
+    (Policy::A2u, "factor_graph", "final"),
+    (Policy::A2u, "ekf", "final"),
+    (Policy::DeadReckoning, "factor_graph", "final"),
+    (Policy::DeadReckoning, "ekf", "final"),
+];
+
 /// What the page shows of a simulation (`sim.json`): the executed positions and one estimate's,
 /// per AUV per epoch, rounded to 0.1 m.
 #[derive(Debug, Serialize)]
@@ -65,8 +78,8 @@ pub struct SimData {
     pub times: Vec<f64>,
     /// `[auv][epoch]`: executed positions \[x, y, z\], metres, rounded to 0.1 m.
     pub executed: Vec<Vec<[f64; 3]>>,
-    /// The estimate shown.
-    pub estimate: EstimateData,
+    /// The estimate shown; none when every estimate of the final stages' flight failed.
+    pub estimate: Option<EstimateData>,
 }
 
 /// One estimate's track as the page shows it.
@@ -84,9 +97,10 @@ pub struct EstimateData {
     pub position: Vec<Vec<[f64; 3]>>,
 }
 
-/// The simulated tracks of `sim` for a plan of `auvs` AUVs, with the estimate [`DEFAULT_ESTIMATE`].
-/// Fails with [`ViewerError::Sim`] when the simulation's team is not the plan's, the estimate is
-/// missing, or its arrays do not fit its epochs or hold non-finite values.
+/// The simulated tracks of `sim` for a plan of `auvs` AUVs, with the first estimate of
+/// [`SHOWN_ESTIMATES`] it holds (none when it holds none of them). Fails with
+/// [`ViewerError::Sim`] when the simulation's team is not the plan's, or its arrays do not fit
+/// its epochs or hold non-finite values.
 pub fn sim(sim: &SimRecord, auvs: usize) -> Result<SimData, ViewerError> {
     let bad = |why: String| Err(ViewerError::Sim(why));
     if sim.auvs != auvs {
@@ -102,17 +116,13 @@ pub fn sim(sim: &SimRecord, auvs: usize) -> Result<SimData, ViewerError> {
     if !sim.times.iter().all(|t| t.is_finite()) || sim.times.windows(2).any(|t| t[1] <= t[0]) {
         return bad("its epoch times are not finite and increasing".into());
     }
-    let (policy, estimator, flown) = DEFAULT_ESTIMATE;
-    let Some(est) = sim
-        .estimates
+    let shown = SHOWN_ESTIMATES
         .iter()
-        .find(|e| e.policy == policy && e.estimator == estimator && e.flown == flown)
-    else {
-        return bad(format!(
-            "it has no estimate with policy \"{}\", estimator \"{estimator}\", flown \"{flown}\"",
-            policy.name()
-        ));
-    };
+        .find_map(|&(policy, estimator, flown)| {
+            sim.estimates
+                .iter()
+                .find(|e| e.policy == policy && e.estimator == estimator && e.flown == flown)
+        });
     let track = |what: &str, t: &[Vec<[f64; 3]>]| -> Result<Vec<Vec<[f64; 3]>>, ViewerError> {
         if t.len() != auvs {
             return Err(ViewerError::Sim(format!(
@@ -142,13 +152,17 @@ pub fn sim(sim: &SimRecord, auvs: usize) -> Result<SimData, ViewerError> {
         seed: sim.seed,
         times: sim.times.iter().map(|t| (t * 1e3).round() / 1e3).collect(),
         executed: track("flight.executed", &sim.flight.executed)?,
-        estimate: EstimateData {
-            policy: policy.name().into(),
-            estimator: estimator.into(),
-            flown: flown.into(),
-            team_rmse_m: est.metrics.team_rmse_m,
-            position: track("the estimate's position", &est.position)?,
-        },
+        estimate: shown
+            .map(|est| -> Result<EstimateData, ViewerError> {
+                Ok(EstimateData {
+                    policy: est.policy.name().into(),
+                    estimator: est.estimator.clone(),
+                    flown: est.flown.clone(),
+                    team_rmse_m: est.metrics.team_rmse_m,
+                    position: track("the estimate's position", &est.position)?,
+                })
+            })
+            .transpose()?,
     })
 }
 

@@ -21,7 +21,7 @@
 //! about λ, and its last step may fail on rounding); they reuse the factorisation the marginals
 //! need anyway and make a linear problem exact. The result is accepted if and only if the
 //! Gauss–Newton decrement ½ gᵀΛ⁻¹g (the cost decrease one more step would predict) is at most
-//! `acceptance`; otherwise the smoother returns [`EstimateError::Solver`] with the reason LM
+//! `acceptance`; otherwise the smoother returns [`EstimateError::NotConverged`] with the reason LM
 //! stopped. The decrement is half the squared Mahalanobis length of that step, which bounds
 //! every coordinate's remaining error relative to its own marginal standard deviation.
 //!
@@ -256,11 +256,12 @@ fn solve(
             Stop::Stalled => "it found no step that lowers the cost",
             Stop::MaxIterations => "it reached the iteration limit",
         };
-        return Err(EstimateError::Solver(format!(
-            "Levenberg–Marquardt did not converge: it stopped after {iterations} iterations \
-             because {why}, at cost {cost:.6e}, but a Gauss–Newton step would still lower the \
-             cost by {decrement:.3e}"
-        )));
+        return Err(EstimateError::NotConverged {
+            iterations,
+            reason: why,
+            cost,
+            decrement,
+        });
     }
 
     let z = chol.selected_inverse();

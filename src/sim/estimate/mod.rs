@@ -165,7 +165,7 @@ pub struct SmoothOptions {
     /// Accept the result only if one more Gauss–Newton step would lower the cost by at most
     /// this (default 1e-3, a step of at most √(2·1e-3) ≈ 0.045 posterior standard deviations in
     /// Mahalanobis length, so no coordinate is further than 0.045 of its own marginal standard
-    /// deviation from where that step leads); otherwise [`EstimateError::Solver`].
+    /// deviation from where that step leads); otherwise [`EstimateError::NotConverged`].
     pub acceptance: f64,
 }
 
@@ -200,6 +200,22 @@ pub enum EstimateError {
         /// What is wrong.
         why: String,
     },
+    /// Levenberg–Marquardt stopped short of the standard of [`SmoothOptions::acceptance`].
+    #[error(
+        "the factor graph solver failed: Levenberg–Marquardt did not converge: it stopped after \
+         {iterations} iterations because {reason}, at cost {cost:.6e}, but a Gauss–Newton step \
+         would still lower the cost by {decrement:.3e}"
+    )]
+    NotConverged {
+        /// Iterations taken (the Gauss–Newton polish included).
+        iterations: usize,
+        /// Why it stopped: "it reached the iteration limit", …
+        reason: &'static str,
+        /// Its final cost ½χ².
+        cost: f64,
+        /// The decrease one more Gauss–Newton step would predict.
+        decrement: f64,
+    },
     /// The solver failed.
     #[error("the factor graph solver failed: {0}")]
     Solver(String),
@@ -228,9 +244,9 @@ fn empty(problem: &Problem) -> Estimate {
 ///
 /// Errors: [`EstimateError::Unobservable`] or [`EstimateError::BadMeasurement`] from
 /// validation (an `initial` of the wrong shape or not finite is a `BadMeasurement` of "initial
-/// guess"); [`EstimateError::Solver`] if Levenberg–Marquardt does not converge by the standard
-/// of [`SmoothOptions::acceptance`], or if the linear algebra fails (which validation is meant
-/// to make impossible).
+/// guess"); [`EstimateError::NotConverged`] if Levenberg–Marquardt does not converge by the
+/// standard of [`SmoothOptions::acceptance`]; [`EstimateError::Solver`] if the linear algebra
+/// fails (which validation is meant to make impossible).
 pub fn smooth(problem: &Problem, initial: &[Vec<[f64; 3]>]) -> Result<Estimate, EstimateError> {
     smooth_with(problem, initial, &SmoothOptions::default())
 }

@@ -295,7 +295,9 @@ fn smoother_reports_non_convergence() {
         ..Default::default()
     };
     match smooth_with(&p, &far, &options) {
-        Err(EstimateError::Solver(msg)) => assert!(msg.contains("did not converge"), "{msg}"),
+        Err(e @ EstimateError::NotConverged { .. }) => {
+            assert!(e.to_string().contains("did not converge"), "{e}")
+        }
         other => panic!("expected a solver error, got {other:?}"),
     }
 }
