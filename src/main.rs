@@ -696,6 +696,35 @@ fn four_numbers(text: &str) -> Result<[f64; 4], String> {
 /// Raised by Ctrl-C during `shoal simulate`: the library stops between samples and estimates.
 static SIM_CANCEL: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
+/// Whether `shoal simulate`'s outputs have begun to move into place.
+static SIM_GATE: shoal::output_set::CommitGate = shoal::output_set::CommitGate::new();
+
+/// Write sim.json (as `file`) and, for a finished record, its figures into `set`, and move
+/// the set into place: a new sim.json never stands beside an earlier flight's figures (an
+/// interrupted record has none, and the earlier ones go).
+fn write_sim_set(
+    p: &shoal::Plan,
+    floor: &shoal::Seafloor,
+    record: &shoal::sim::SimRecord,
+    set: shoal::output_set::OutputSet,
+    file: &str,
+    figures: bool,
+) -> Result<()> {
+    shoal::sim::write(record, &set.dir().join(file))?;
+    if figures && record.incomplete.is_none() {
+        let dir = set.dir().join("figures");
+        shoal::figures::write_sim(p, floor, record, &dir)
+            .with_context(|| format!("drawing the figures of {file}"))?;
+    }
+    if !SIM_GATE.enter() {
+        loop {
+            std::thread::park();
+        }
+    }
+    set.commit(None)?;
+    Ok(())
+}
+
 #[allow(clippy::too_many_arguments)]
 fn simulate(
     plan: &Path,
@@ -716,10 +745,26 @@ fn simulate(
     let p = shoal::sim::run::with_settings(&p, &name, set)?;
     let seed = seed.unwrap_or(p.scenario.seed);
     let out = out.unwrap_or_else(|| base_dir(Some(plan)).join("sim.json"));
-    ctrlc::set_handler(|| {
+    // sim.json and its figures are one output set: staged beside sim.json, moved in whole
+    let file = out
+        .file_name()
+        .and_then(|f| f.to_str())
+        .with_context(|| format!("{}: not a file name", out.display()))?
+        .to_string();
+    let set = shoal::output_set::OutputSet::begin_kind(
+        base_dir(Some(&out)),
+        shoal::output_set::Kind::Simulation(file.clone()),
+    )?;
+    let staging = set.dir().to_path_buf();
+    ctrlc::set_handler(move || {
         if SIM_CANCEL.swap(true, Ordering::SeqCst) {
-            eprintln!("interrupted again: stopping now, writing nothing");
-            std::process::exit(130);
+            if SIM_GATE.interrupt() {
+                let _ = std::fs::remove_dir_all(&staging);
+                eprintln!("interrupted again: stopping now, writing nothing");
+                std::process::exit(130);
+            }
+            eprintln!("interrupt: the outputs are being moved into place; that ends first");
+            return;
         }
         eprintln!(
             "interrupted: stopping after the runs that have finished (Ctrl-C again to stop at \
@@ -786,7 +831,12 @@ fn simulate(
         }
         Err(e) => return Err(e.into()),
     };
-    shoal::sim::write(&record, &out)?;
+    match write_sim_set(&p, &floor, &record, set, &file, figures) {
+        Err(_) if SIM_GATE.interrupted() => loop {
+            std::thread::park();
+        },
+        written => written?,
+    }
     print!("{}", printable_lines(&shoal::sim::summary::table(&record)));
     if !record.failed_estimates.is_empty() {
         let each: Vec<String> = record
@@ -809,12 +859,12 @@ fn simulate(
             out.display()
         );
     }
-    // interrupted, it stops at sim.json
     if figures && record.incomplete.is_none() {
-        let dir = base_dir(Some(&out)).join("figures");
-        let files = shoal::figures::write_sim(&p, &floor, &record, &dir)
-            .with_context(|| format!("drawing the figures of {}", out.display()))?;
-        println!("drew {} figure files in {}", files.len(), dir.display());
+        println!(
+            "drew {} figure files in {}",
+            2 * shoal::figures::SIM_FIGURES.len(),
+            base_dir(Some(&out)).join("figures").display()
+        );
     }
     let finished = record.incomplete.as_ref().map_or(runs, |i| i.runs_finished);
     println!(
@@ -838,17 +888,7 @@ fn view(plan: &Path, seafloor: Option<&Path>, sim: Option<&Path>, out: &Path) ->
     let p = shoal::output::read_plan(plan)?;
     let floor = shoal::check::load_floor(&p, seafloor)
         .with_context(|| format!("loading the seafloor of {}", plan.display()))?;
-    let record: Option<shoal::sim::SimRecord> = match sim {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("reading {}", path.display()))?;
-            Some(
-                serde_json::from_str(&text)
-                    .with_context(|| format!("{} is not a sim.json", path.display()))?,
-            )
-        }
-        None => None,
-    };
+    let record = sim.map(shoal::sim::read).transpose()?;
     shoal::viewer::write_html_with_sim(&p, &floor, record.as_ref(), out).map_err(|e| {
         match (&e, sim) {
             (shoal::viewer::ViewerError::Sim(_), Some(path)) => anyhow::Error::new(e).context(
@@ -1108,7 +1148,14 @@ fn plan_into(
         self::plot(&plan, &floor, &dir, &out.join("figures"), false, how.quiet)?;
     }
     // the check verifies what was written: the file read back, not the plan in memory
-    let written = shoal::output::read_plan(&plan_path)?;
+    let written = shoal::output::read_plan(&plan_path).map_err(|e| {
+        anyhow::anyhow!(
+            "the plan does not read back as written, so nothing was written to {}: {}",
+            out.display(),
+            e.to_string()
+                .replace(&plan_path.display().to_string(), "plan.json")
+        )
+    })?;
     let check = shoal::check::check_plan(&written, &floor);
     if !stop.gate.enter() {
         // Ctrl-C came first: its handler is ending the process
@@ -1317,8 +1364,8 @@ fn compare(
                 return;
             }
             let rows = finished.lock().map(|r| r.clone()).unwrap_or_default();
-            match shoal::compare::write_tables(&out, &rows, total) {
-                Ok((csv, _, _)) => eprintln!("{}", interrupted(rows.len(), total, &csv)),
+            match write_compare_set(&out, &rows, total, false) {
+                Ok(_) => eprintln!("{}", interrupted(rows.len(), total, &out.join("runs.csv"))),
                 Err(e) => eprintln!("interrupted: {e}"),
             }
             std::process::exit(130);
@@ -1362,21 +1409,12 @@ fn compare(
     if let Some(e) = plan_error {
         return Err(e.into());
     }
-    let (csv_path, md_path, table) = shoal::compare::write_tables(out, &rows, total)?;
+    let table = write_compare_set(out, &rows, total, figure)?;
+    let (csv_path, md_path) = (out.join("runs.csv"), out.join("summary.md"));
     println!("{table}");
     if rows.len() < total {
         eprintln!("{}", interrupted(rows.len(), total, &csv_path));
         return Ok(ExitCode::from(130));
-    }
-    if figure {
-        let mut methods: Vec<&str> = Vec::new();
-        for r in &rows {
-            if !methods.contains(&r.method.as_str()) {
-                methods.push(&r.method);
-            }
-        }
-        let title = format!("{}, {} runs", methods.join(" vs "), rows.len());
-        shoal::figures::write_compare(&rows, &title, out)?;
     }
     println!(
         "wrote {} and {}{}",
@@ -1385,6 +1423,30 @@ fn compare(
         if figure { " and compare.png/.svg" } else { "" }
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// Write compare's runs.csv, summary.md and (for a finished comparison, when `figure`) its
+/// figure into `out` as one output set; returns the summary's text.
+fn write_compare_set(
+    out: &Path,
+    rows: &[shoal::compare::Row],
+    total: usize,
+    figure: bool,
+) -> Result<String> {
+    let set = shoal::output_set::OutputSet::begin_kind(out, shoal::output_set::Kind::Compare)?;
+    let (_, _, table) = shoal::compare::write_tables(set.dir(), rows, total)?;
+    if figure && rows.len() == total {
+        let mut methods: Vec<&str> = Vec::new();
+        for r in rows {
+            if !methods.contains(&r.method.as_str()) {
+                methods.push(&r.method);
+            }
+        }
+        let title = format!("{}, {} runs", methods.join(" vs "), rows.len());
+        shoal::figures::write_compare(rows, &title, set.dir())?;
+    }
+    set.commit(None)?;
+    Ok(table)
 }
 
 /// What an interrupted comparison says it kept.

@@ -19,8 +19,8 @@ pub enum OutputError {
         /// The underlying I/O error.
         source: std::io::Error,
     },
-    /// A plan file could not be read.
-    #[error("cannot read plan {path}: {source}")]
+    /// A plan file (or another of shoal's outputs) could not be read.
+    #[error("cannot read {path}: {source}")]
     Read {
         /// The file's path.
         path: PathBuf,
@@ -31,6 +31,14 @@ pub enum OutputError {
     /// [`crate::plan::FORMAT`], or does not deserialise as a [`Plan`].
     #[error("{path} is not a shoal plan: {why}")]
     Parse {
+        /// The file's path.
+        path: PathBuf,
+        /// What is wrong with it.
+        why: String,
+    },
+    /// A file is not a simulation record (sim.json) of `shoal simulate`.
+    #[error("{path} is not a sim.json of `shoal simulate`: {why}")]
+    SimRecord {
         /// The file's path.
         path: PathBuf,
         /// What is wrong with it.

@@ -42,6 +42,9 @@ pub enum Kind {
     /// `shoal simulate`: the record (its file name, e.g. "sim.json") and
     /// figures/STEM.png|svg of [`crate::figures::SIM_FIGURES`].
     Simulation(String),
+    /// `shoal compare`: runs.csv, summary.md and the figure compare.png|svg (the plans it
+    /// keeps are written one by one as their runs end, and are not part of the set).
+    Compare,
     /// `shoal seafloor export`: a grid (its file name, e.g. "floor.asc") and, for an ESRI ASCII
     /// grid, its `.prj`.
     Grid(String),
@@ -53,7 +56,7 @@ impl Kind {
     pub fn manifest(&self) -> Option<&'static str> {
         match self {
             Kind::Plan => Some(MANIFEST),
-            Kind::Simulation(_) | Kind::Grid(_) => None,
+            Kind::Simulation(_) | Kind::Compare | Kind::Grid(_) => None,
         }
     }
 
@@ -77,6 +80,9 @@ impl Kind {
                     || figure(&[crate::figures::TABLE])
             }
             Kind::Simulation(f) => rel == f || figure(&crate::figures::SIM_FIGURES),
+            Kind::Compare => {
+                ["runs.csv", "summary.md", "compare.png", "compare.svg"].contains(&rel)
+            }
             // an ESRI ASCII grid's .prj sidecar (a GeoTIFF holds its CRS)
             Kind::Grid(f) => {
                 let asc = Path::new(f)

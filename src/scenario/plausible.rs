@@ -281,7 +281,7 @@ pub const TABLE: &[Plausible] = &[
         key: "navigation.sample_period",
         unit: " s",
         low: None,
-        high: Some(10.0),
+        high: Some(2.0),
         usual: "sensors sampled at 1–10 Hz (0.1–1 s)",
         slips: &[Slip {
             what: "milliseconds typed as seconds",
@@ -542,8 +542,8 @@ mod tests {
             ),
             (
                 "navigation.heading_noise",
-                "1",
-                "degrees typed as radians? (1° = 0.017 rad)",
+                "0.4",
+                "degrees typed as radians? (0.4° = 0.007 rad)",
             ),
             (
                 "navigation.sound_speed",
@@ -557,8 +557,8 @@ mod tests {
             ),
             (
                 "navigation.sample_period",
-                "100",
-                "milliseconds typed as seconds? (100 ms = 0.1 s)",
+                "10",
+                "milliseconds typed as seconds? (10 ms = 0.01 s)",
             ),
         ];
         for (key, value, slip) in cases {

@@ -72,7 +72,11 @@ pub(crate) const INTEGER_RANGES: &[(&str, u64, Option<u64>)] = &[
     ("seafloor.synthetic.seamounts", 0, Some(MAX_FEATURES as u64)),
     ("seafloor.synthetic.valleys", 0, Some(MAX_FEATURES as u64)),
     ("scp.max_iterations", 1, Some(MAX_SCP_ITERATIONS as u64)),
-    ("scp.step1_max_iterations", 1, Some(MAX_SCP_ITERATIONS as u64)),
+    (
+        "scp.step1_max_iterations",
+        1,
+        Some(MAX_SCP_ITERATIONS as u64),
+    ),
     ("sampling.samples", 1, Some(1000)),
     ("sampling.tree_budget", 1, Some(100_000)),
     ("sampling.attempts", 1, Some(100_000)),

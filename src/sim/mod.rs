@@ -46,6 +46,21 @@ pub fn write(record: &SimRecord, path: &std::path::Path) -> Result<(), crate::ou
     crate::output::write_atomic(path, &text)
 }
 
+/// Read a record `shoal simulate` wrote. A record and figures that a killed `shoal simulate`
+/// left half moved into their folder are completed first ([`crate::output_set::settle`]).
+pub fn read(path: &std::path::Path) -> Result<SimRecord, crate::output::OutputError> {
+    crate::output_set::settle(crate::atomic_file::folder_of(path));
+    let text =
+        std::fs::read_to_string(path).map_err(|source| crate::output::OutputError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    serde_json::from_str(&text).map_err(|e| crate::output::OutputError::SimRecord {
+        path: path.to_path_buf(),
+        why: e.to_string(),
+    })
+}
+
 /// The path (`flight.executed[0][3][2]`) of the first null in `v`.
 fn first_null(v: &serde_json::Value, at: String) -> Option<String> {
     match v {
