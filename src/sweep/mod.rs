@@ -4,7 +4,7 @@
 //! ([`table`]); a run that fails records its error and the sweep goes on (docs/sweep.md). The
 //! final table is written twice: `runs.csv` and its typed copy `runs.parquet`. Beside every
 //! table is the record of its study ([`record`]): `--resume` and `collect` refuse a table of
-//! another study, and `collect` names every row and run it cannot take ([`verify`]).
+//! another study, and `collect` names every row and run it cannot take (`verify`).
 
 mod columns;
 mod flown;
@@ -81,7 +81,7 @@ pub enum SweepError {
         why: String,
     },
     /// Shard tables that cannot be collected whole: every problem with its file (listed by file
-    /// and line, the first [`PROBLEMS_SHOWN`], then how many more in each file).
+    /// and line, the first `PROBLEMS_SHOWN`, then how many more in each file).
     #[error(
         "{dir}: cannot collect the shard tables whole, nothing written; {n} problem{s}:\n  {list}",
         dir = .dir.display(),
