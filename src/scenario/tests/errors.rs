@@ -755,6 +755,10 @@ fn says_what_is_allowed(msg: &str) -> bool {
 fn regression_every_validation_error_names_its_key_and_what_is_allowed() {
     let mut bad = Vec::new();
     for (overrides, key) in EVERY_RULE {
+        // with the gdal feature, GDAL is asked to read a grid of any other extension
+        if cfg!(feature = "gdal") && overrides.iter().any(|o| o.contains(".png")) {
+            continue;
+        }
         let e = match default_with(&set(overrides)) {
             Err(e) => e,
             Ok(_) => panic!("{overrides:?} was accepted"),
