@@ -258,41 +258,26 @@ fn regression_an_unconverged_plan_says_so() {
     assert!(out.contains("but 2 stage(s) did not converge"), "{out}");
 }
 
-/// Regression (issue 13): an interrupted `shoal plan` left hidden temporary files (up to
+/// Regression: an interrupted `shoal plan` left hidden temporary files (up to
 /// 840 KB) and a mixed set (a new plan.json beside an earlier run's CSVs). The set is now
 /// staged inside the output directory and moved into place after its check; Ctrl-C removes the
 /// staging directory and leaves the earlier set as it was.
 #[cfg(unix)]
 #[test]
 fn regression_an_interrupted_plan_leaves_the_earlier_outputs_untouched() {
-    use std::io::BufRead;
     let dir = fresh_dir("interrupted");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("plan.json"), "earlier").unwrap();
-    let mut child = shoal()
-        .args(["plan", "--no-plot", "-o", dir.to_str().unwrap()])
-        .args(["--set", "team.auvs=20", "--set", "horizon.steps=40"])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    // wait until it plans (its handler is set before it prints this)
-    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
-    let mut line = String::new();
-    while !line.starts_with("planning") {
-        line.clear();
-        assert!(
-            err.read_line(&mut line).unwrap() > 0,
-            "shoal plan ended early"
-        );
-    }
-    let pid = child.id() as libc::pid_t;
-    // SAFETY: sending a signal to our own child process
-    assert_eq!(unsafe { libc::kill(pid, libc::SIGINT) }, 0);
-    let status = child.wait().unwrap();
-    let mut rest = String::new();
-    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
-    assert_eq!(status.code(), Some(130), "{rest}");
+    // its handler is set before it prints this
+    let done = common::interrupt_when(
+        shoal()
+            .args(["plan", "--no-plot", "-o", dir.to_str().unwrap()])
+            .args(["--set", "team.auvs=20", "--set", "horizon.steps=40"]),
+        |line| line.starts_with("planning"),
+        std::time::Duration::ZERO,
+    );
+    let rest = done.stderr;
+    assert_eq!(done.code, Some(130), "{rest}");
     assert!(rest.contains("interrupted: nothing was written"), "{rest}");
     let left: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
@@ -312,39 +297,23 @@ fn regression_an_interrupted_plan_leaves_the_earlier_outputs_untouched() {
 #[cfg(unix)]
 #[test]
 fn regression_ctrl_c_in_a_multi_window_plan_dropped_the_finished_windows() {
-    use std::io::BufRead;
     let dir = fresh_dir("interrupted-windows");
-    let mut child = shoal()
-        .args(["plan", "--no-plot", "-o", dir.to_str().unwrap()])
-        .args([
-            "--set",
-            "team.auvs=2",
-            "--set",
-            "horizon.steps=6",
-            "--set",
-            "windows=8",
-        ])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    // wait until the first window is planned
-    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
-    let mut line = String::new();
-    while !line.contains("window 0: step 3") {
-        line.clear();
-        assert!(
-            err.read_line(&mut line).unwrap() > 0,
-            "shoal plan ended early"
-        );
-    }
-    let pid = child.id() as libc::pid_t;
-    // SAFETY: sending a signal to our own child process
-    assert_eq!(unsafe { libc::kill(pid, libc::SIGINT) }, 0);
-    let status = child.wait().unwrap();
-    let mut rest = String::new();
-    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
-    assert_eq!(status.code(), Some(130), "{rest}");
+    let done = common::interrupt_when(
+        shoal()
+            .args(["plan", "--no-plot", "-o", dir.to_str().unwrap()])
+            .args([
+                "--set",
+                "team.auvs=2",
+                "--set",
+                "horizon.steps=6",
+                "--set",
+                "windows=8",
+            ]),
+        |line| line.contains("window 0: step 3"),
+        std::time::Duration::ZERO,
+    );
+    let rest = done.stderr;
+    assert_eq!(done.code, Some(130), "{rest}");
     assert!(rest.contains("interrupt: "), "{rest}");
     assert!(rest.contains("windows planned before Ctrl-C"), "{rest}");
     let plan = shoal::output::read_plan(&dir.join("plan.json")).unwrap();
@@ -492,32 +461,18 @@ fn regression_a_huge_compare_is_refused() {
 #[cfg(unix)]
 #[test]
 fn regression_an_interrupted_compare_writes_its_finished_runs() {
-    use std::io::BufRead;
     let dir = fresh_dir("compare-interrupted");
-    let mut child = shoal()
-        .args(["compare", "--no-plot", "-o", dir.to_str().unwrap()])
-        .args(["--set", "horizon.steps=6", "--auvs", "1", "--seeds", "1-30"])
-        .args(["--methods", "mpc"])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
     // not a terminal: a line per run; interrupt after the first
-    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
-    let mut line = String::new();
-    while !line.starts_with("[1/30]") {
-        line.clear();
-        assert!(err.read_line(&mut line).unwrap() > 0, "compare ended early");
-    }
-    // SAFETY: sending a signal to our own child process
-    assert_eq!(
-        unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) },
-        0
+    let done = common::interrupt_when(
+        shoal()
+            .args(["compare", "--no-plot", "-o", dir.to_str().unwrap()])
+            .args(["--set", "horizon.steps=6", "--auvs", "1", "--seeds", "1-30"])
+            .args(["--methods", "mpc"]),
+        |line| line.starts_with("[1/30]"),
+        std::time::Duration::ZERO,
     );
-    let mut rest = String::new();
-    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
-    let status = child.wait().unwrap();
-    assert_eq!(status.code(), Some(130), "{rest}");
+    let rest = done.stderr;
+    assert_eq!(done.code, Some(130), "{rest}");
     let rows = csv::Reader::from_path(dir.join("runs.csv"))
         .unwrap()
         .records()

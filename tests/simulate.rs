@@ -1,5 +1,7 @@
 //! `shoal simulate`: flying the default plan, measuring and estimating it.
 
+mod common;
+
 use shoal::sim::policy::Policy;
 use shoal::sim::record::{EstimateRecord, SimRecord};
 use shoal::sim::{run, simulate, SimError};
@@ -692,36 +694,22 @@ fn regression_runs_can_be_cancelled_and_keep_what_finished() {
 #[cfg(unix)]
 #[test]
 fn regression_ctrl_c_keeps_the_finished_runs() {
-    use std::io::BufRead;
     let (_d, plan_path) = written_plan(&default_plan().0);
     let sim = std::path::Path::new(&plan_path).with_file_name("sim.json");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_shoal"))
-        .args(["simulate", &plan_path, "--no-plot", "--runs", "500"])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
     // its handler is set before it prints this
-    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
-    let mut line = String::new();
-    while !line.starts_with("simulating") {
-        line.clear();
-        assert!(
-            err.read_line(&mut line).unwrap() > 0,
-            "shoal simulate ended early"
-        );
-    }
-    std::thread::sleep(std::time::Duration::from_secs(3));
-    // SAFETY: sending a signal to our own child process
-    assert_eq!(
-        unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) },
-        0
+    let done = common::interrupt_when(
+        std::process::Command::new(env!("CARGO_BIN_EXE_shoal")).args([
+            "simulate",
+            &plan_path,
+            "--no-plot",
+            "--runs",
+            "500",
+        ]),
+        |line| line.starts_with("simulating"),
+        std::time::Duration::from_secs(3),
     );
-    let out = child.wait_with_output().unwrap();
-    let mut rest = String::new();
-    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(130), "{stdout}{rest}");
+    let (stdout, rest) = (done.stdout, done.stderr);
+    assert_eq!(done.code, Some(130), "{stdout}{rest}");
     if sim.exists() {
         let r: SimRecord = serde_json::from_slice(&std::fs::read(&sim).unwrap()).unwrap();
         let i = r.incomplete.expect("marked incomplete");

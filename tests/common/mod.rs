@@ -229,3 +229,56 @@ pub fn plan_and_check(
     assert_eq!(rebuilt.fingerprint(), floor.fingerprint());
     Ok((p, floor))
 }
+
+/// What an interrupted command left: its exit code, its stdout, and its stderr after the line
+/// that said it was ready.
+#[cfg(unix)]
+pub struct Interrupted {
+    pub code: Option<i32>,
+    pub stdout: String,
+    pub stderr: String,
+}
+
+/// Starts `cmd`, waits until a line of its stderr satisfies `ready`, waits `delay` more, and
+/// sends it SIGINT (Ctrl-C). Panics if the command ends before it is ready.
+#[cfg(unix)]
+pub fn interrupt_when(
+    cmd: &mut Command,
+    ready: impl Fn(&str) -> bool,
+    delay: std::time::Duration,
+) -> Interrupted {
+    use std::io::{BufRead, Read};
+    use std::process::Stdio;
+    let mut child = cmd
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    while !ready(&line) {
+        line.clear();
+        assert!(
+            err.read_line(&mut line).unwrap() > 0,
+            "ended before it was ready"
+        );
+    }
+    std::thread::sleep(delay);
+    // SAFETY: sending a signal to our own child process
+    assert_eq!(
+        unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) },
+        0
+    );
+    // read stderr on its own thread, so that neither pipe can fill and stall the child
+    let rest = std::thread::spawn(move || {
+        let mut rest = String::new();
+        err.read_to_string(&mut rest).unwrap();
+        rest
+    });
+    let out = child.wait_with_output().unwrap();
+    Interrupted {
+        code: out.status.code(),
+        stdout: String::from_utf8_lossy(&out.stdout).into(),
+        stderr: rest.join().unwrap(),
+    }
+}
