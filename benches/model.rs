@@ -8,7 +8,7 @@
 //! iteration costs.
 //!
 //! A window needs at least one solve of each model, so these medians are a lower bound on a
-//! window's time with Clarabel (BENCHMARKS.md, "What one convex solve costs").
+//! window's time with Clarabel (BENCHMARKS.md, "One window against team size").
 
 mod common;
 

@@ -1,6 +1,6 @@
 //! Write the convex models of `cargo bench --bench model` as Clarabel JSON problem files, so
 //! that other solvers can be measured on exactly the models the SCP solves
-//! (`scripts/other_solvers.py`; BENCHMARKS.md, "Other solvers on the same models").
+//! (`scripts/other_solvers.py`; BENCHMARKS.md, "The convex solve against the anchor and other solvers").
 //!
 //! For N = 5 and N = 20 on the default scenario (K = 20, seed 1), into DIR:
 //! - `p2_N{n}.json`: P2 (Step 1) about the first guess;

@@ -1,5 +1,5 @@
 //! Load timings for a GEBCO-tile-sized NetCDF grid read through GDAL (BENCHMARKS.md, "Large
-//! grids: NetCDF through GDAL"). Needs the `gdal` feature and gdal-bin's gdal_translate:
+//! grids"). Needs the `gdal` feature and gdal-bin's gdal_translate:
 //!
 //! `cargo run --release --features gdal --example gdal_load [N]` writes an N × N float32 grid
 //! (default 7200, about 200 MB) as a GeoTIFF with shoal's writer, converts it with

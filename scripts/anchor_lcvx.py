@@ -15,7 +15,7 @@ FILE ...` counts its factorisation by the same rule as shoal's models
 Install (one command): python3 -m pip install -r scripts/other_solvers.txt
 Run: python3 scripts/anchor_lcvx.py DIR [T ...]   (default T = 150 420 520; n = 1963, 5473,
 6773 variables in cvxpy's form, near P5's 1760 at N = 5 and 6860 at N = 20)
-Results: BENCHMARKS.md, "The issue's anchor, measured here, and the rows a model needs".
+Results: BENCHMARKS.md, "The convex solve against the anchor and other solvers".
 """
 
 import json

@@ -20,7 +20,7 @@ Prints one line per model and solver: iterations, wall time of set-up and solve 
 of REPEATS, default 5; one thread; SCS can update only b and q between models, so an SCP
 would set it up again for every model), status, and the objective's relative difference to
 Clarabel's. Not part of the
-test run. Results: BENCHMARKS.md, "Other solvers on the same models".
+test run. Results: BENCHMARKS.md, "The convex solve against the anchor and other solvers".
 """
 
 import json

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # How the RRT-like baseline's time and objective grow with the tree (samples 𝔯 per node, nodes
 # kept per step) and the team size N, against the MPC on the same scenarios (BENCHMARKS.md,
-# "The paper's comparison"). Usage: scripts/rrt_scaling.sh [SHOAL] [OUT]; SHOAL defaults to
+# "MPC against sampling"). Usage: scripts/rrt_scaling.sh [SHOAL] [OUT]; SHOAL defaults to
 # target/release/shoal (build it with `cargo build --release`), OUT to rrt-scaling.
 set -euo pipefail
 shoal=${1:-target/release/shoal}

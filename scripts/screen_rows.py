@@ -19,7 +19,7 @@ of one SCP in a row; b is linearised about a's solution):
 
 Install (one command): python3 -m pip install -r scripts/other_solvers.txt
 Run: python3 scripts/screen_rows.py DIR [THRESHOLD ...]   (default thresholds 1 3 10 30)
-Results: BENCHMARKS.md, "The issue's anchor, measured here, and the rows a model needs".
+Results: docs/design-decisions.md, "Probes not kept".
 """
 
 import sys

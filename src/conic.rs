@@ -242,7 +242,7 @@ impl ConicSolution {
 /// Clarabel's duality-gap tolerances (absolute and relative) and its feasibility tolerance.
 /// Its defaults (10⁻⁸) solve each convex model far past what the SCP can use: the SCP stops at
 /// a predicted decrease of 10⁻³ relative and re-simulates the plan from the inputs, and every
-/// bound is tightened by margins of 10⁻⁶ or more (`team`). BENCHMARKS.md, "Design history",
+/// bound is tightened by margins of 10⁻⁶ or more (`team`). docs/design-decisions.md, "Solver settings",
 /// has the measurements behind the choice.
 pub const GAP_TOL: f64 = 1e-6;
 /// See [`GAP_TOL`].
@@ -256,7 +256,7 @@ pub const FEAS_TOL: f64 = 1e-7;
 /// triangular solves, for each of the two right-hand sides. Clarabel judges convergence by
 /// residuals computed from the problem data, not from the factorisation, so a less exact
 /// direction can cost iterations but cannot make a wrong answer pass as `Solved`. On our models
-/// it costs none (BENCHMARKS.md, "Design history").
+/// it costs none (docs/design-decisions.md, "Solver settings").
 pub fn settings() -> DefaultSettings<f64> {
     DefaultSettingsBuilder::default()
         .verbose(false)
@@ -451,8 +451,8 @@ impl ConicSolver {
     /// Write the model of the last update (P, q, A, b, cones and the settings, in the solver's
     /// units x̃ = x / scale) as Clarabel's JSON problem file, whole or not at all: what any
     /// Clarabel interface reads back (`clarabel.load_from_file` in Python), so that other solvers
-    /// can be measured on exactly the models the SCP solves (BENCHMARKS.md, "Other solvers on
-    /// the same models").
+    /// can be measured on exactly the models the SCP solves (docs/design-decisions.md, "The convex
+    /// solver").
     pub fn save_to_file(&self, path: &std::path::Path) -> Result<(), ConicError> {
         use clarabel::solver::SolverJSONReadWrite;
         let fail = |e: std::io::Error| ConicError::Save {

@@ -234,8 +234,8 @@ const GROWTH_COOLDOWN: usize = 3;
 /// Clarabel's own tolerance (10⁻⁶ relative) solves the models 2–4 interior-point iterations
 /// past what the test can use (issue 22: a window's interior-point iterations 0.84–0.89× at
 /// N = 3–20; the objectives unchanged on average over 32 seeds, each window moved either way
-/// as any change of the path moves it; BENCHMARKS.md, "Where the factorisation's work comes
-/// from, and solves only as exact as the stopping test").
+/// as any change of the path moves it; docs/design-decisions.md, "Solves as exact as the
+/// stopping test").
 const ACCURACY_SHARE: f64 = 0.1;
 
 /// Run SCvx from `initial`, handing every iteration to `observer` as it ends. The first model

@@ -44,7 +44,7 @@ pub fn solve(
 /// round the compass, each scored by the merit one SCP iteration reaches from its formation
 /// guess. The SCP is a local method: from one course it keeps close to it (each linearised
 /// model of the concave OF1_8 charges a turn), and over a window's courses the objective
-/// spreads by 6–20 % at N = 3 and 5 (docs/method.md, "OF1_8"; BENCHMARKS.md, "First courses").
+/// spreads by 6–20 % at N = 3 and 5 (docs/method.md, "OF1_8"; docs/design-decisions.md, "First courses").
 /// From three courses on, one more is tried: at the vertex of the parabola through the best
 /// course's merit and its two neighbours' (`vertex`), between the courses the even spacing left
 /// out.

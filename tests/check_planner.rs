@@ -646,7 +646,7 @@ fn regression_a_reduced_accuracy_solve_breaks_no_hard_constraint() {
 /// `usv.courses = 1` with `initial_heading` that course (so the choice is reproducible and
 /// nothing else changes), later windows continue their course without trying again, and at
 /// N = 3, seed 7, the team turns off east for a better window (−3711 against −3254: the SCP
-/// does not choose the heading on its own; BENCHMARKS.md, "First courses").
+/// does not choose the heading on its own; docs/design-decisions.md, "First courses").
 #[test]
 fn first_courses_start_step1_from_the_best_and_plan_as_that_heading_would() {
     let mut s = Scenario {
@@ -689,7 +689,7 @@ fn first_courses_start_step1_from_the_best_and_plan_as_that_heading_would() {
 
 /// `scp.step1_tolerance` and `scp.step1_max_iterations` set Step 1's (P2's) own stopping rule,
 /// and the checker reads a Step 1 status against that limit. At N = 3, seed 1, Step 1's tail is
-/// a slow turn of the whole team (BENCHMARKS.md, "Where the gap comes from, stage by stage"):
+/// a slow turn of the whole team (docs/design-decisions.md, "Step 1's tolerance"):
 /// run to the converged run's tolerance it takes many more iterations and ends with a better
 /// Step 1 plan and a better window; stopped after one iteration it says so, and Step 3 keeps
 /// its own limit.

@@ -390,11 +390,11 @@ pub struct Scp {
     /// reference extrapolated along its last step (Nesterov's sequence), and kept if it lowers
     /// the merit. Converged runs (`tolerance` 10⁻⁷) end 1.3–2.8× sooner, at local optima that
     /// are sometimes better and sometimes worse; at the default tolerance a window takes
-    /// 1.3–1.8× longer for a median gain of 0.3–1.5 % (BENCHMARKS.md, "Fast and converged").
+    /// 1.3–1.8× longer for a median gain of 0.3–1.5 % (docs/design-decisions.md, "Momentum steps").
     pub momentum: bool,
     /// Step 1 (P2) only: its own `tolerance` (default: `tolerance`). Step 1's tail is a slow
     /// turn of the whole team, and at N ≤ 5 the gap of a default window to its converged run
-    /// is that turn's (BENCHMARKS.md, "Where the gap comes from, stage by stage").
+    /// is that turn's (docs/design-decisions.md, "Step 1's tolerance").
     pub step1_tolerance: Option<f64>,
     /// Step 1 (P2) only: its own `max_iterations` (default: `max_iterations`).
     pub step1_max_iterations: Option<usize>,
@@ -557,7 +557,7 @@ impl Default for Scp {
         Scp {
             max_iterations: 50,
             // 1e-3, not 1e-4: past it the SCP crept on for as many iterations again, gaining
-            // under 1 % of the objective (BENCHMARKS.md, "Tuning the SCP")
+            // under 1 % of the objective (docs/design-decisions.md, "Solver settings")
             tolerance: 1e-3,
             feasibility_tol: 1e-3,
             trust_region: 200.0,

@@ -61,7 +61,7 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "acoustic.graph" => {
             "How Step 2 (P4) picks the A2A chain: \"lanes\" (ours, the default: one chain per \
              window, the AUVs in cross-track order; explores more, is faster at N ≥ 20 and \
-             stops nearer the converged optimum, see BENCHMARKS.md), \"per_step\" (the \
+             stops nearer the converged optimum, see docs/design-decisions.md), \"per_step\" (the \
              paper: the longest Hamiltonian path of each step) or \"window\" (ours: one chain \
              per window, the longest summed over its steps)."
         }

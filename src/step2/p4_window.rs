@@ -23,7 +23,7 @@
 //! At a step where an edge of the window's chain cannot carry a link at Step 1's positions,
 //! `step2::solve` keeps the step's own P4 path if it has fewer such edges.
 //!
-//! BENCHMARKS.md ("One chain per window", and the sixth and seventh sessions of issue 22) has
+//! docs/design-decisions.md ("One chain per window") has
 //! the measurements: lanes is the default since it explores more than the paper's chains at
 //! every team size measured, over one window and over missions, at about half the time at
 //! N = 20, and stops nearer the converged optimum.

@@ -114,8 +114,8 @@ pub(super) fn underwater(p: &TeamProblem, m: &mut Assembly, n: usize, k: usize) 
 /// Why not keep every row: a bound kilometres away is a slack of kilometres beside slacks of
 /// metres, and the interior-point method starts far from centred. On the default window at
 /// N = 5 the ten models of the SCP took 23–32 interior-point iterations each with every grid
-/// row and 19–27 with the redundant ones padded, for the same optima (BENCHMARKS.md, "Far
-/// bounds", tenth session).
+/// row and 19–27 with the redundant ones padded, for the same optima (docs/design-decisions.md, "Far
+/// grid bounds").
 pub(super) fn grid(m: &mut Assembly, col: usize, ext: &Extent, centre: [f64; 2], reach: f64) {
     let far = reach + REDUNDANT_MARGIN;
     for (i, lo, hi) in [(0, ext.x_min, ext.x_max), (1, ext.y_min, ext.y_max)] {

@@ -18,14 +18,14 @@ use crate::trajectory::Trajectory;
 
 /// Extra clearance (m) the convex model asks for beyond ε (constraint tightening). 0.5 m, not
 /// 0.25 m: the floor's linearisation error over a step of tens of metres is often 0.3–0.7 m,
-/// and every step it broke was rejected (BENCHMARKS.md).
+/// and every step it broke was rejected (docs/design-decisions.md, "Solver settings").
 pub(super) const FLOOR_MARGIN: f64 = 0.5;
 
 /// Floor rows per segment (see [`rows`]), besides the waypoint's. 6, not the 12 of the
 /// sessions before the floor's bend was priced: with the bend term the model holds over a
 /// whole step, the nearly parallel rows of neighbouring samples only cost the interior-point
 /// method iterations, and the samples a rejected candidate breaks get rows ([`force`]), so
-/// that a model which left them out is not built again (BENCHMARKS.md, "Fewer floor rows").
+/// that a model which left them out is not built again (docs/design-decisions.md, "The floor rows").
 pub(super) const FLOOR_ROWS: usize = 6;
 
 /// Least distance (m) between two samples that get rows of one segment, whatever the

@@ -37,7 +37,7 @@ const SPEED_FRACTIONS: [f64; 6] = [1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125];
 /// The speed is the fraction (`SPEED_FRACTIONS`) of full speed (or of the speed that
 /// reaches the destination at k = K) whose formation has the least objective: the trust
 /// region moves a reference only Δ metres per SCP iteration, so a guess kilometres from the
-/// optimum costs tens of iterations (BENCHMARKS.md, "Design history"). The objective, not the
+/// optimum costs tens of iterations (docs/design-decisions.md, "The first guess"). The objective, not the
 /// merit: a formation that changes course at the start of
 /// a window turns too sharply at any speed above v_min, where the heading is undefined, so
 /// the merit would always pick the slowest guess.

@@ -9,7 +9,7 @@
 //!
 //! The SCP needs a violation that is continuous, else it cannot see that an AUV at 0.1006 m/s
 //! reversing is almost feasible (slow it by 0.6 mm/s) while one at 0.0999 m/s is feasible
-//! (BENCHMARKS.md, "Design history", has what a jumping measure did). Here the violation is
+//! (docs/design-decisions.md, "The heading rule", has what a jumping measure did). Here the violation is
 //!
 //!   v(a, b) = max(0, min(g(a, b), ‖a‖ − v̲, ‖b‖ − v̲))   (m/s),
 //!

@@ -15,11 +15,11 @@
 //! apart from N = 5 on. Asked for them, the team either climbed (before
 //! the altitude was priced) or kept a shortfall whose size depends on the floor under the
 //! rendezvous, thousands in J at N = 5, which made the objective swing from seed to seed
-//! (BENCHMARKS.md, "What the lanes term cost in height").
+//! (docs/design-decisions.md, "The lanes term").
 //!
 //! Why the gaps: OF1_5, a sum of squared distances, is largest with the team in two clusters at
 //! the corridor's edges, where swaths overlap while strips between them go unswept
-//! (BENCHMARKS.md, "The team's cross-track layout below the corridor's cap"). The gap to a lane
+//! (docs/design-decisions.md, "The lanes term"). The gap to a lane
 //! neighbour adds sea floor only up to one swath, so the term asks for lanes a swath apart and
 //! no more.
 //!
@@ -28,7 +28,7 @@
 //! outermost AUVs of a team of 15–20 climbed 40–70 m above the floor, where their swaths see
 //! nothing (the explored area counts only swaths flown at survey altitude). With the height
 //! above h_s priced at the gaps' own w_lanes, a metre of climb costs more than the at most
-//! |z|/r < 1 metre of gap it can buy (BENCHMARKS.md, "What the lanes term cost in height").
+//! |z|/r < 1 metre of gap it can buy (docs/design-decisions.md, "The lanes term").
 //!
 //! Both sums are maxima of affine functions, convex, one variable and two rows per pair (per
 //! AUV) and step: the gaps exact in the convex model, the height through the floor linearised

@@ -78,7 +78,7 @@ impl Layout {
     ///
     /// Unscaled, positions of 10²–10³ m sit beside inputs of 10⁻² m/s², and Clarabel's
     /// tolerances hold for its equilibrated problem, which leaves the small variables poorly
-    /// resolved (BENCHMARKS.md, "Design history").
+    /// resolved (docs/design-decisions.md, "Positions in units of d_s").
     pub fn scale(&self, position: f64) -> Vec<f64> {
         let mut d = vec![1.0; self.variables()];
         for k in 1..=self.k {

@@ -555,7 +555,8 @@ impl ScpProblem for TeamProblem<'_> {
     /// P5 only. P2's plan is Step 2's input: ending on its better last candidate changes the
     /// chain Step 2 plans, and over seeds 1–8 of the default scenario it moved the N = 10
     /// windows by +1.5 % on average (5 worse, 3 better). In P5 it can only lower the window's
-    /// objective (BENCHMARKS.md, "The last candidate", fifteenth session).
+    /// objective (docs/design-decisions.md, "Step 3's trust region, band
+    /// prices and last candidate").
     fn ends_on_a_better_candidate(&self) -> bool {
         self.links.is_some()
     }

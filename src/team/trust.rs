@@ -122,7 +122,7 @@ fn square(
 /// root of its tolerance (on a flat floor, horizontal inputs of 4·10⁻⁷ m/s² where the optimum
 /// has none). Why not drop the price with the binding: the proximal pull kept the SCP's steps
 /// short where the floor is flat, and without it the median gap to the converged optimum at
-/// N = 5 was 1.63 % against 0.81 % (BENCHMARKS.md, "The floor's bend").
+/// N = 5 was 1.63 % against 0.81 % (docs/design-decisions.md, "The floor rows").
 pub(super) fn proximal(p: &TeamProblem, m: &mut Assembly, r: &Trajectory, bent: &[bool]) {
     let l = p.layout;
     let per_tau = TAU_PRICE / p.scenario.acoustic.sonar_range;
