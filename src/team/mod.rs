@@ -9,6 +9,9 @@
 //! | `speed` | the USV's speed limit, C1_7 |
 //! | `ranges` | C1_5 (d_max), C1_6 (d_s at k = K) |
 //! | `bounds` | C1_4 (underwater), the grid bounds |
+//! | `depth` | ours: the depth rating, z ≥ −`auv.max_depth` |
+//! | `climb` | ours: the flight-path angle, \|V_z\| ≤ tan(γ_max)·‖V_h‖ |
+//! | `cruise` | ours: the cruise floor, ‖V_h‖ ≥ `auv.min_speed` from step 1 on |
 //! | `floor` | C2_2, floor clearance along every segment (C1_12) |
 //! | `heading` | C1_14, heading rate, as a disjunction |
 //! | `keep_out` | the USV's keep-out rows (obstacle cells), P5's line of sight (C1_13) |
@@ -31,6 +34,9 @@
 mod assemble;
 mod bounds;
 mod bridges;
+mod climb;
+mod cruise;
+mod depth;
 mod detour;
 mod dynamics;
 mod floor;
@@ -599,6 +605,12 @@ impl ScpProblem for TeamProblem<'_> {
                 let hard = ranges::violation(self, t, n, k) + bounds::violation(self, t, n, k);
                 sum += hard;
                 worst = worst.max(hard);
+                // the vehicle's envelope: metres below the rating, m/s of climb and of speed
+                let d = depth::violation(self, t, n, k);
+                let c = climb::violation(self, t, n, k);
+                let v = cruise::violation(self, t, n, k);
+                sum += d + dt * (c + v);
+                worst = worst.max(d).max(c).max(v);
             }
         }
         for k in 1..=l.k {
@@ -691,6 +703,18 @@ impl ScpProblem for TeamProblem<'_> {
                 let (_, angle) = heading::violation(self, t, n, k);
                 if angle > worst.0 {
                     worst = (angle, heading::detail(n, k, angle));
+                }
+                let d = depth::violation(self, t, n, k);
+                if d > worst.0 {
+                    worst = (d, depth::detail(self, n, k, d));
+                }
+                let c = climb::violation(self, t, n, k);
+                if c > worst.0 {
+                    worst = (c, climb::detail(self, t, n, k, c));
+                }
+                let v = cruise::violation(self, t, n, k);
+                if v > worst.0 {
+                    worst = (v, cruise::detail(self, n, k, v));
                 }
             }
         }
