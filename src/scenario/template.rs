@@ -92,8 +92,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "auv.min_speed" => {
             "Cruise floor, m/s: from step 1 on every AUV's horizontal speed through the water \
              stays at least this (ours; the paper has none), held along each step's segment. \
-             Default 1.0 m/s: a REMUS 100 cruises at ~1.5 m/s and its fins lose authority \
-             below ~1 m/s (Prestero 2001). 0 turns the floor off. min_heading_speed ≤ value < \
+             Default 1.2 m/s: a REMUS 100 cruises at ~1.5 m/s and its fins lose authority \
+             below ~1 m/s (Prestero 2001); simulated flights sank at 1.03 m/s. 0 turns the floor off. min_heading_speed ≤ value < \
              max_speed, or 0."
         }
         "auv.floor_clearance" => {
