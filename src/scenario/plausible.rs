@@ -489,6 +489,10 @@ mod tests {
         if key == "navigation.sample_period" {
             set.push(format!("navigation.acoustic_period={value}"));
         }
+        if key == "auv.surface_clearance" {
+            // a depth rating below any clearance tried
+            set.push("auv.max_depth=1000".to_string());
+        }
         super::super::default_with(&set).expect("a valid override")
     }
 

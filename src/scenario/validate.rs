@@ -292,7 +292,8 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     c.float_rel(
         "auv.max_depth",
         v.max_depth,
-        v.max_depth.is_finite() && v.max_depth > v.surface_clearance,
+        // (a non-finite clearance is its own key's error)
+        v.max_depth > v.surface_clearance || !v.surface_clearance.is_finite(),
         format!(
             "must be a number of metres above auv.surface_clearance = {} (the depth rating)",
             num(v.surface_clearance)
