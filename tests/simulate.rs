@@ -61,7 +61,10 @@ fn regression_plans_within_the_checker_flew_into_the_floor() {
     s.seed = 4;
     let floor = Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();
     let plan = Planner::new(&s, &floor).run().unwrap();
-    let m = simulate(&plan, "plan.json", &floor, 1).unwrap().flight.metrics;
+    let m = simulate(&plan, "plan.json", &floor, 1)
+        .unwrap()
+        .flight
+        .metrics;
     assert_eq!(m.samples_below_floor, 0, "{m:?}");
 }
 

@@ -22,7 +22,7 @@ pub use load::{
     default_with, from_toml_str, load, with_overrides, ScenarioError, EMBEDDED_DEFAULT,
 };
 pub use sampling::Sampling;
-pub use sim::{profile_factor, Current, Navigation, Simulation};
+pub use sim::{profile_factor, profile_slope, Current, Navigation, Simulation};
 pub use template::default_toml;
 pub use validate::{
     validate, whole_multiple as validate_whole_multiple, Violation, ACOUSTIC_PERIOD, MAX_AUVS,

@@ -49,7 +49,7 @@ pub(super) fn assemble(
     cruise::objective(p, &mut m, penalty);
 
     // ---- zero cone ----
-    dynamics::rows(p, &mut m);
+    dynamics::rows(p, r, &mut m);
 
     // ---- nonnegative cone ----
     let first = m.b.len();

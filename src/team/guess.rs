@@ -150,18 +150,30 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
                         .max(0.0)
                         .sqrt()
                         .min(slope * h[0].hypot(h[1]));
-                    let target = [h[0], h[1], ((z - p[2]) / dt).clamp(-room, room)];
+                    // through the water: the formation's velocity over ground less the current
+                    let c = problem.drift(p);
+                    let w = [h[0] - c[0], h[1] - c[1]];
+                    let room = room.min(slope * w[0].hypot(w[1]));
+                    let target = [w[0], w[1], ((z - p[2]) / dt).clamp(-room, room)];
                     // deadbeat velocity: V[k+1] = vv·V[k] + vu·U[k] = target
                     let input: [f64; 3] =
                         std::array::from_fn(|i| (target[i] - m.vv[i] * v[i]) / m.vu[i]);
-                    (p, v) = m.step(p, v, input);
+                    let (q, vn) = m.step(p, v, input);
+                    (p, v) = (std::array::from_fn(|i| q[i] + dt * c[i]), vn);
                     input
                 })
                 .collect()
         })
         .collect::<Vec<_>>();
     debug_assert_eq!(auv_u.len(), nn);
-    let t = Trajectory::simulate(&problem.start, usv_u, auv_u, &problem.auv, &problem.usv);
+    let t = Trajectory::simulate_in(
+        &problem.start,
+        usv_u,
+        auv_u,
+        &problem.auv,
+        &problem.usv,
+        &|p| problem.drift(p),
+    );
     (t, clipped)
 }
 
@@ -171,10 +183,12 @@ mod tests {
     use crate::scenario::{Scenario, WeightScaling};
     use crate::team::TeamProblem;
 
-    /// How far the USV goes in the first reference of the default scenario with `n` AUVs.
+    /// How far the USV goes in the first reference of the default scenario with `n` AUVs
+    /// (without the cruise floor: `the_guess_keeps_the_cruise_floor` has it).
     fn guessed_distance(n: usize, scaling: WeightScaling) -> f64 {
         let mut s = Scenario::default();
         s.team.auvs = n;
+        s.auv.min_speed = 0.0;
         if scaling == WeightScaling::Sum {
             // the weights of before issue 14, tuned as sums for 5 AUVs
             (s.weights.w1, s.weights.w2, s.weights.w5) = (1e3, 1.0, 1e-4);
@@ -258,5 +272,27 @@ mod tests {
         assert!((guessed_distance(20, WeightScaling::PerAuv) - 3000.0).abs() < 1.0);
         assert!((guessed_distance(5, WeightScaling::Sum) - 3000.0).abs() < 1.0);
         assert!(guessed_distance(20, WeightScaling::Sum) < 400.0);
+    }
+
+    /// With the cruise floor the formation the team could afford at a crawl moves at least at
+    /// the floor (the 20 AUVs of the paper's sums would creep at 0.2 m/s, where a REMUS's fins
+    /// hold nothing), and every AUV of the guess keeps it from step 1 on.
+    #[test]
+    fn the_guess_keeps_the_cruise_floor() {
+        let mut s = Scenario::default();
+        s.team.auvs = 20;
+        (s.weights.w1, s.weights.w2, s.weights.w5) = (1e3, 1.0, 1e-4);
+        s.weights.scaling = WeightScaling::Sum;
+        let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
+        let keep_out = floor.keep_out();
+        let p = TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
+        let g = p.initial_guess(None);
+        let rule = crate::team::cruise::rule(&p);
+        for (n, v) in g.auv_v.iter().enumerate() {
+            for (k, v) in v.iter().enumerate().skip(1) {
+                let speed = v[0].hypot(v[1]);
+                assert!(speed >= rule.waypoint_floor(), "AUV {n} k = {k}: {speed}");
+            }
+        }
     }
 }

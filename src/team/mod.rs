@@ -5,7 +5,7 @@
 //!
 //! | file | family |
 //! |---|---|
-//! | `dynamics` | C1_1: the USV's eq. (9), the AUVs' eqs. (5)–(8) |
+//! | `dynamics` | C1_1: the USV's eq. (9), the AUVs' eqs. (5)–(8) in the current (eq. (8)'s ϖ) |
 //! | `speed` | the USV's speed limit, C1_7 |
 //! | `ranges` | C1_5 (d_max), C1_6 (d_s at k = K) |
 //! | `bounds` | C1_4 (underwater), the grid bounds |
@@ -65,6 +65,7 @@ use crate::error::{PlanError, Step};
 use crate::scenario::{A2aGraph, AwayFrom, Scenario, UsvObjective};
 use crate::scp::{self, Evaluation, Iteration, ScpOutcome, ScpProblem};
 use crate::seafloor::Seafloor;
+use crate::sim::current::{planned, CurrentField};
 use crate::trajectory::{Start, Trajectory};
 use crate::vehicle::{AuvModel, UsvModel};
 use heading::HeadingRule;
@@ -110,6 +111,9 @@ pub struct TeamProblem<'a> {
     gap: f64,
     /// The violation the last model's solution kept (`Assembly::kept_violation`).
     kept: f64,
+    /// The current the AUVs are planned in (`sim::current::planned`): their V is the velocity
+    /// through the water, and the current moves their positions (`dynamics`).
+    current: CurrentField,
 }
 
 impl<'a> TeamProblem<'a> {
@@ -150,7 +154,13 @@ impl<'a> TeamProblem<'a> {
             kept: 0.0,
             solver: None,
             gap: crate::conic::GAP_TOL,
+            current: CurrentField::new(&planned(&scenario.current)),
         }
+    }
+
+    /// The current at p, m/s (`sim::current::planned` of the scenario's `[current]`).
+    pub fn drift(&self, p: [f64; 3]) -> [f64; 3] {
+        self.current.at(p)
     }
 
     /// The first window of `scenario` over `floor` (keep-out field `keep_out`): the vehicle
@@ -406,7 +416,9 @@ impl<'a> TeamProblem<'a> {
                     .collect()
             })
             .collect();
-        Trajectory::simulate(&self.start, usv_u, auv_u, &self.auv, &self.usv)
+        Trajectory::simulate_in(&self.start, usv_u, auv_u, &self.auv, &self.usv, &|p| {
+            self.drift(p)
+        })
     }
 
     /// The largest violations of the constraints the model holds hard, over every AUV and
@@ -651,12 +663,13 @@ impl ScpProblem for TeamProblem<'_> {
             .zip(&previous.auv_u)
             .map(|(a, b)| ahead(a, b, beta))
             .collect();
-        Some(Trajectory::simulate(
+        Some(Trajectory::simulate_in(
             &self.start,
             usv_u,
             auv_u,
             &self.auv,
             &self.usv,
+            &|p| self.drift(p),
         ))
     }
 

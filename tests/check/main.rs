@@ -293,6 +293,7 @@ fn build_with(
     };
     let mut plan = Plan {
         warnings: vec![],
+        current: shoal::sim::current::still(),
         format: FORMAT.into(),
         method: shoal::plan::METHOD_MPC.into(),
         shoal_version: "test".into(),
