@@ -27,12 +27,23 @@ pub fn warnings(windows: &[Window], s: &Scenario, floor: &Seafloor) -> Vec<Strin
     out.extend(more_auvs_than_lanes(s));
     out.extend(courses_unused(s));
     out.extend(unconverged(windows, s));
+    out.extend(current_grids(s));
     for w in windows {
         let edge = grid_edge(w, s, floor);
         out.extend(barely_moves(w, s, edge.is_some()));
         out.extend(edge);
     }
     out
+}
+
+/// The planner plans in the current of `[current]`'s velocity and profile; grid files it does
+/// not read (`sim::current::planned`): say that this plan is made in still water.
+fn current_grids(s: &Scenario) -> Option<String> {
+    (s.current.file_east.is_some() || s.current.file_north.is_some()).then(|| {
+        "current.file_east/file_north: the planner does not read current grids; this plan is \
+         made in still water, and `shoal simulate` flies it in the grids' current"
+            .to_string()
+    })
 }
 
 /// The number of swath-wide lanes in the corridor 2·d_max wide in which C1_5 keeps the team,

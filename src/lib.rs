@@ -22,7 +22,7 @@
 //!   longest Hamiltonian path), `step3` (P5 with the line-of-sight loop); `scp` (SCvx) over
 //!   `conic` (Clarabel); `vehicle` (eqs. (5)–(9)); `linearise` (the nonconvex terms'
 //!   gradients).
-//! - [`plan`]: the plan file (`shoal-plan/4`); [`output`]: atomic writing of plan.json and CSVs;
+//! - [`plan`]: the plan file (`shoal-plan/5`); [`output`]: atomic writing of plan.json and CSVs;
 //!   [`positions`]: a plan's positions in latitude/longitude or the grid's projected CRS.
 //! - [`check`](mod@check): independent verification of a plan against the seafloor
 //!   ([`check()`](fn@check) runs it).

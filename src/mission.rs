@@ -200,7 +200,7 @@ fn position_problem(floor: &Seafloor, x: f64, y: f64) -> Option<String> {
 
 /// Algorithm 1, line 5: USV at the origin (or at `initial.usv` when `[initial]` lists no AUV);
 /// AUVs at seeded random points in the half ball of radius d_s below it, at least
-/// surface_clearance below the surface and ε above the floor's keep-out field `keep_out`
+/// surface_clearance below the surface, within the depth rating (`auv.max_depth`) and ε above the floor's keep-out field `keep_out`
 /// (`Seafloor::keep_out`: the floor itself away from obstacles), at rest. Or the explicit
 /// `[initial]` of the scenario.
 pub fn initial_state(
@@ -244,7 +244,12 @@ pub fn initial_state(
                 rng.gen_range(-ds..ds),
                 rng.gen_range(-ds..0.0),
             ];
-            if d.iter().map(|c| c * c).sum::<f64>() > ds * ds || d[2] > -s.auv.surface_clearance {
+            // below the surface clearance and within the depth rating
+            let depth = -d[2];
+            if d.iter().map(|c| c * c).sum::<f64>() > ds * ds
+                || depth < s.auv.surface_clearance
+                || depth > s.auv.max_depth
+            {
                 continue;
             }
             let p = [usv[0] + d[0], usv[1] + d[1], d[2]];
@@ -260,8 +265,9 @@ pub fn initial_state(
             let z0 = floor.elevation(usv[0], usv[1]).unwrap_or(f64::NAN);
             return Err(PlanError::NoInitialPosition(format!(
                 "no point for AUV {n} in {TRIES} draws within d_s = {ds} m of the USV, at least \
-                 {} m below the surface and {} m above the floor (floor under the USV: z = {z0:.1} m)",
-                s.auv.surface_clearance, s.auv.floor_clearance
+                 {} m below the surface, at most {} m deep and {} m above the floor (floor under \
+                 the USV: z = {z0:.1} m)",
+                s.auv.surface_clearance, s.auv.max_depth, s.auv.floor_clearance
             )));
         };
         auvs.push(AuvState {

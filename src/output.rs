@@ -321,10 +321,10 @@ mod tests {
             ),
             (
                 "{\"format\": \"shoal-plan/1\"}",
-                "format \"shoal-plan/1\" is not \"shoal-plan/4\"",
+                "format \"shoal-plan/1\" is not \"shoal-plan/5\"",
             ),
             (
-                "{\"format\": \"shoal-plan/4\"}",
+                "{\"format\": \"shoal-plan/5\"}",
                 "in memory.json is not a shoal plan: missing field",
             ),
         ] {

@@ -1,4 +1,4 @@
-//! The plan file, format `shoal-plan/4` (documented field by field in docs/plan-format.md).
+//! The plan file, format `shoal-plan/5` (documented field by field in docs/plan-format.md).
 //!
 //! Index conventions: a window has K steps; positions and velocities are given for k = 0..=K
 //! (K + 1 entries, k = 0 is the window's initial state), inputs for k = 0..K−1 (K entries; input
@@ -8,7 +8,7 @@ use crate::scenario::Scenario;
 use serde::{Deserialize, Serialize};
 
 /// Value of the `format` field of every plan this version writes.
-pub const FORMAT: &str = "shoal-plan/4";
+pub const FORMAT: &str = "shoal-plan/5";
 
 /// `Plan::method` of Algorithm 1's plans (Steps 1–3 by sequential convex programming).
 pub const METHOD_MPC: &str = "mpc";
@@ -42,6 +42,10 @@ pub struct Plan {
     pub seafloor: SeafloorRecord,
     /// Discrete models actually used (derived from the scenario; recorded for readers).
     pub model: ModelRecord,
+    /// The current the plan was made in (`sim::current::planned`): the AUVs' velocities are
+    /// through the water and their positions move with it, eq. (8)'s ϖ term. Still water for
+    /// plans of methods that do not model it.
+    pub current: crate::scenario::Current,
     /// State at the start of window 0.
     pub initial: InitialState,
     /// One per receding-horizon window, in order; window w + 1 starts where window w's final

@@ -293,6 +293,11 @@ impl Setup {
             scenario: s.clone(),
             seafloor: provenance.seafloor.record(floor),
             model: self.model,
+            current: if method == METHOD_MPC {
+                crate::sim::current::planned(&s.current)
+            } else {
+                crate::sim::current::still()
+            },
             metrics: mission(&windows, floor, s),
             initial: self.initial,
             windows,

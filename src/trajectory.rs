@@ -30,13 +30,29 @@ impl Trajectory {
         self.usv_u.len()
     }
 
-    /// Roll the models forward from `start` under the given inputs.
+    /// Roll the models forward from `start` under the given inputs, in still water.
     pub fn simulate(
         start: &Start,
         usv_u: Vec<[f64; 2]>,
         auv_u: Vec<Vec<[f64; 3]>>,
         auv: &AuvModel,
         usv: &UsvModel,
+    ) -> Trajectory {
+        Self::simulate_in(start, usv_u, auv_u, auv, usv, &|_| [0.0; 3])
+    }
+
+    /// Roll the models forward from `start` under the given inputs in the current `drift`
+    /// (m/s at a position): eq. (8) with its ϖ term, the AUV's velocity V being through the
+    /// water and its position moving over ground by δ·c(P\[k\]) more each step,
+    /// P\[k+1\] = P\[k\] + pv·V\[k\] + pu·U\[k\] + δ·c(P\[k\]). The USV's input of eq. (9) is
+    /// its velocity over ground.
+    pub fn simulate_in(
+        start: &Start,
+        usv_u: Vec<[f64; 2]>,
+        auv_u: Vec<Vec<[f64; 3]>>,
+        auv: &AuvModel,
+        usv: &UsvModel,
+        drift: &dyn Fn([f64; 3]) -> [f64; 3],
     ) -> Trajectory {
         let mut usv_p = vec![start.usv];
         for u in &usv_u {
@@ -47,11 +63,10 @@ impl Trajectory {
         for (s, inputs) in start.auvs.iter().zip(&auv_u) {
             let (mut p, mut v) = (vec![s.position], vec![s.velocity]);
             for u in inputs {
-                let (pn, vn) = auv.step(
-                    *p.last().expect("non-empty"),
-                    *v.last().expect("non-empty"),
-                    *u,
-                );
+                let at = *p.last().expect("non-empty");
+                let (pn, vn) = auv.step(at, *v.last().expect("non-empty"), *u);
+                let c = drift(at);
+                let pn = std::array::from_fn(|i| pn[i] + auv.dt * c[i]);
                 p.push(pn);
                 v.push(vn);
             }

@@ -116,7 +116,7 @@ fn cli_plans_writes_outputs_and_check_passes() {
     // the plan echoes the resolved scenario with its seed
     let json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("plan.json")).unwrap()).unwrap();
-    assert_eq!(json["format"], "shoal-plan/4");
+    assert_eq!(json["format"], "shoal-plan/5");
     assert_eq!(json["scenario"]["seed"], 1);
     assert_eq!(json["scenario"]["team"]["auvs"], 2);
 }
@@ -379,10 +379,10 @@ fn regression_a_plan_of_another_format_says_to_plan_again() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("old_format");
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("plan.json");
-    std::fs::write(&path, r#"{"format": "shoal-plan/3"}"#).unwrap();
+    std::fs::write(&path, r#"{"format": "shoal-plan/4"}"#).unwrap();
     let msg = shoal::output::read_plan(&path).unwrap_err().to_string();
     assert!(
-        msg.contains("\"shoal-plan/3\" is not \"shoal-plan/4\""),
+        msg.contains("\"shoal-plan/4\" is not \"shoal-plan/5\""),
         "{msg}"
     );
     assert!(msg.contains("plan the scenario again"), "{msg}");

@@ -52,6 +52,24 @@ fn the_default_plan_is_flown_close_to_its_waypoints_and_off_the_floor() {
     assert_eq!(m.samples_off_grid, 0);
 }
 
+/// Regression: plans that `shoal check` passed put the simulated REMUS 100s into the floor
+/// (seed 4 at N = 5: 120 samples below it), stopping mid-window or creeping at 0.6–1.1 m/s
+/// where the fins lose authority, and climbing or diving at up to 90°. With the envelope
+/// (the depth rating, the flight-path angle, the cruise floor) the flight stays off the floor.
+#[test]
+fn regression_plans_within_the_checker_flew_into_the_floor() {
+    let mut s = Scenario::default();
+    s.team.auvs = 5;
+    s.seed = 4;
+    let floor = Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap();
+    let plan = Planner::new(&s, &floor).run().unwrap();
+    let m = simulate(&plan, "plan.json", &floor, 1)
+        .unwrap()
+        .flight
+        .metrics;
+    assert_eq!(m.samples_below_floor, 0, "{m:?}");
+}
+
 #[test]
 fn the_same_seed_gives_the_same_simulation_byte_for_byte() {
     let (plan, floor) = default_plan();

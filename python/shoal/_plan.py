@@ -256,7 +256,7 @@ class Plan:
 
     def to_json(self) -> str:
         """The plan file's text: what ``shoal plan`` writes to plan.json (format
-        ``shoal-plan/4``, docs/plan-format.md)."""
+        ``shoal-plan/5``, docs/plan-format.md)."""
         return self._raw.to_json()
 
     def save(self, path: PathLike) -> None:

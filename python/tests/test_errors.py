@@ -96,7 +96,7 @@ def test_an_infeasible_start_is_an_infeasible_error():
 def test_a_bad_plan_text_is_a_plan_file_error():
     with pytest.raises(shoal.PlanFileError, match="not a shoal plan"):
         shoal.Plan.from_json("{")
-    with pytest.raises(shoal.PlanFileError, match='format "shoal-plan/1" is not "shoal-plan/4"'):
+    with pytest.raises(shoal.PlanFileError, match='format "shoal-plan/1" is not "shoal-plan/5"'):
         shoal.Plan.from_json('{"format": "shoal-plan/1"}')
 
 

@@ -64,7 +64,7 @@ def test_metrics_are_the_plan_files(default_plan):
 
 def test_arrays_are_the_plan_json_final_stage(default_plan):
     doc = json.loads(default_plan.to_json())
-    assert doc["format"] == "shoal-plan/4"
+    assert doc["format"] == "shoal-plan/5"
     final = doc["windows"][0]["final"]
     for n, auv in enumerate(final["auvs"]):
         np.testing.assert_array_equal(default_plan.positions[:, n, :], auv["position"])

@@ -80,6 +80,8 @@
 //! | C1_4 underwater, C1_5/C1_6 ranges | [`LENGTH_TOL`] = 1e-6 m | convex constraints |
 //! | C2_2 floor clearance, grid | [`FLOOR_TOL`] = 1e-3 m, 0 m for the grid | nonconvex (SCP) |
 //! | C1_14 heading rate | [`HEADING_TURN_TOL`]/δ (1e-3 rad of turn per step) | nonconvex (SCP) |
+//! | depth rating | [`LENGTH_TOL`] | linear rows |
+//! | flight-path angle, cruise floor | [`SPEED_TOL`] | nonconvex (SCP), restricted by the model |
 //! | recorded surge speed / heading | [`DERIVED_TOL`] = 1e-9 (m/s, rad) | pure arithmetic |
 //! | window chain | [`CHAIN_TOL`] = 1e-9 (m, m/s) | a copy |
 //! | objective | [`OBJECTIVE_REL_TOL`] = 1e-6 relative | |
@@ -92,6 +94,7 @@
 //! | acoustic connectivity | 0 AUVs cut off; range [`LENGTH_TOL`], line of sight [`LOS_TOL`] | the hard requirement |
 //! | planned chain line of sight | [`LOS_TOL`] = 1e-6 m | |
 
+mod envelope;
 mod floor;
 mod graph;
 mod metrics;
@@ -635,6 +638,24 @@ pub const LIMITS: &[Limit] = &[
         families: "C1_14 heading rate (applied above it)",
         value: |s| s.auv.min_heading_speed,
         set: |s, v| s.auv.min_heading_speed = v,
+    },
+    Limit {
+        key: "auv.max_depth",
+        families: "depth rating",
+        value: |s| s.auv.max_depth,
+        set: |s, v| s.auv.max_depth = v,
+    },
+    Limit {
+        key: "auv.max_flight_path_angle",
+        families: "flight-path angle",
+        value: |s| s.auv.max_flight_path_angle,
+        set: |s, v| s.auv.max_flight_path_angle = v,
+    },
+    Limit {
+        key: "auv.min_speed",
+        families: "cruise floor",
+        value: |s| s.auv.min_speed,
+        set: |s, v| s.auv.min_speed = v,
     },
     Limit {
         key: "auv.floor_clearance",

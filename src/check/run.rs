@@ -166,6 +166,7 @@ pub(super) fn run(
     families.extend(c.ranges());
     families.extend(c.floor());
     families.push(c.heading_rate());
+    families.extend(c.envelope());
     families.extend(c.recorded());
     families.push(c.chain());
     families.push(c.metrics());
@@ -243,6 +244,9 @@ impl Checker<'_> {
             ("auv.max_speed", s.auv.max_speed),
             ("auv.max_heading_rate", s.auv.max_heading_rate),
             ("auv.min_heading_speed", s.auv.min_heading_speed),
+            ("auv.max_depth", s.auv.max_depth),
+            ("auv.max_flight_path_angle", s.auv.max_flight_path_angle),
+            ("auv.min_speed", s.auv.min_speed),
             ("acoustic.sonar_range", s.acoustic.sonar_range),
             ("acoustic.max_range", s.acoustic.max_range),
         ] {

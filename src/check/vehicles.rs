@@ -66,6 +66,7 @@ impl Checker<'_> {
         let mut fp = Family::new("C1_1 AUV dynamics (position)", "m", DYNAMICS_POSITION_TOL);
         let mut fv = Family::new("C1_1 AUV dynamics (velocity)", "m/s", DYNAMICS_VELOCITY_TOL);
         let mut fu = Family::new("eq. (9) USV dynamics", "m", DYNAMICS_POSITION_TOL);
+        let current = crate::sim::current::CurrentField::new(&self.plan.current);
         for (w, pre, _, n, a) in self.auv_paths() {
             for k in 0..self.k.min(a.input.len()) {
                 let (Some(p0), Some(v0), Some(u), Some(p1), Some(v1)) = (
@@ -78,6 +79,9 @@ impl Checker<'_> {
                     continue;
                 };
                 let (p, v) = step.step(*p0, *v0, *u);
+                // the recorded current moves the position over the step (eq. (8)'s ϖ term)
+                let c = current.at(*p0);
+                let p = std::array::from_fn(|i| p[i] + self.dt * c[i]);
                 let who = || seg(w, k + 1, &format!("{pre}AUV {n}"));
                 fp.record(-diff(p, *p1), who);
                 fv.record(-diff(v, *v1), who);

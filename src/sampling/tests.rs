@@ -97,6 +97,7 @@ fn one_step_plan(s: &Scenario, start: &Start, usv_u: [f64; 2], auv_u: &[[f64; 3]
             auv,
             usv,
         },
+        current: crate::sim::current::still(),
         initial: InitialState {
             origin: "explicit".into(),
             usv: start.usv,

@@ -22,7 +22,7 @@ pub use load::{
     default_with, from_toml_str, load, with_overrides, ScenarioError, EMBEDDED_DEFAULT,
 };
 pub use sampling::Sampling;
-pub use sim::{profile_factor, Current, Navigation, Simulation};
+pub use sim::{profile_factor, profile_slope, Current, Navigation, Simulation};
 pub use template::default_toml;
 pub use validate::{
     validate, whole_multiple as validate_whole_multiple, Violation, ACOUSTIC_PERIOD, MAX_AUVS,
@@ -149,6 +149,14 @@ pub struct Auv {
     pub max_heading_rate: f64,
     /// Horizontal speed (m/s) below which heading is undefined and C1_14 is not applied.
     pub min_heading_speed: f64,
+    /// Depth rating, metres: every AUV waypoint keeps z ≥ −max_depth (`team::depth`).
+    pub max_depth: f64,
+    /// γ_max, rad: the flight-path angle through the water stays within it,
+    /// |V_z| ≤ tan(γ_max)·‖V_h‖ (`team::climb`).
+    pub max_flight_path_angle: f64,
+    /// Cruise floor, m/s: the horizontal speed through the water stays at least this from
+    /// step 1 on (`team::cruise`); 0 turns the floor off.
+    pub min_speed: f64,
     /// ε of C2_2: clearance above the seafloor, metres.
     pub floor_clearance: f64,
     /// C1_4: AUVs stay at least this far below the surface (z ≤ −surface_clearance), metres.
@@ -494,9 +502,20 @@ impl Default for Auv {
             max_speed: 2.0,          // REMUS 100: 2.5 m/s top speed (Fossen), 1.5 m/s cruise
             max_heading_rate: 0.005, // paper gives none; 0.5 rad (29°) per 100 s step
             min_heading_speed: 0.1,  // heading undefined below 0.1 m/s horizontal speed
-            floor_clearance: 5.0,    // ε; REMUS survey altitude is typically 3–10 m
-            surface_clearance: 2.0,  // stay 2 m below the surface (C1_4)
-            swath_width: 50.0,       // ours: a side-scan swath of ~10× a 5 m altitude
+            // Hydroid/Kongsberg REMUS 100 specification sheet: depth rating 100 m
+            max_depth: 100.0,
+            // 0.3 rad (17°): a REMUS keeps its pitch within about ±15–20° in operation
+            // (Prestero 2001, §5 trials: dives at up to ~20° pitch); the path angle through
+            // the water is pitch less angle of attack, a few degrees at cruise
+            max_flight_path_angle: 0.3,
+            // ours: REMUS 100 cruises at ~1.5 m/s (3 kn, spec sheet); its fins lose authority
+            // below ~1 m/s (Prestero 2001: the fin lift grows with u²). Flown by `shoal
+            // simulate`, plans held at 1.0 m/s still sank at their 1.03 m/s legs (seed 4,
+            // N = 5: 509 samples below the floor); at 1.2 m/s none did
+            min_speed: 1.2,
+            floor_clearance: 5.0, // ε; REMUS survey altitude is typically 3–10 m
+            surface_clearance: 2.0, // stay 2 m below the surface (C1_4)
+            swath_width: 50.0,    // ours: a side-scan swath of ~10× a 5 m altitude
             // ours: that swath at ε = 5 m means a slant range of √(25² + 5²) = 25.5 m, which
             // still covers 2·√(25.5² − 15²) = 41 m (82 %) of ground from 15 m up
             survey_altitude: 15.0,

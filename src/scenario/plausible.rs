@@ -226,6 +226,44 @@ pub const TABLE: &[Plausible] = &[
         aside: None,
         effect: None,
     },
+    // Depth ratings: the REMUS 100's 100 m (Hydroid/Kongsberg specification sheet), the
+    // REMUS 6000's 6000 m; no AUV is rated deeper.
+    Plausible {
+        key: "auv.max_depth",
+        unit: " m",
+        low: None,
+        high: Some(6000.0),
+        usual: "a REMUS 100's 100 m depth rating (6000 m for the deepest AUVs)",
+        slips: &[FEET],
+        value: |s| s.auv.max_depth,
+        aside: None,
+        effect: None,
+    },
+    // A REMUS keeps its pitch within about ±15–20° in operation (Prestero 2001); steeper
+    // than 35° (0.6 rad) is no survey AUV's flight.
+    Plausible {
+        key: "auv.max_flight_path_angle",
+        unit: " rad",
+        low: None,
+        high: Some(0.6),
+        usual: "a REMUS's pitch of about ±15–20° (0.26–0.35 rad)",
+        slips: &[DEGREES],
+        value: |s| s.auv.max_flight_path_angle,
+        aside: Some(|v| format!("{:.0}°", v / DEG)),
+        effect: None,
+    },
+    // REMUS 100 (specification sheet): cruise ~1.5 m/s (3 kn), 0.25–2.6 m/s in all.
+    Plausible {
+        key: "auv.min_speed",
+        unit: " m/s",
+        low: None,
+        high: Some(2.0),
+        usual: "a REMUS 100's fins holding it from ~1 m/s, cruise ~1.5 m/s (3 kn)",
+        slips: &[KNOTS, KMH],
+        value: |s| s.auv.min_speed,
+        aside: None,
+        effect: None,
+    },
     // The REMUS 100 is rated to 100 m depth.
     Plausible {
         key: "auv.surface_clearance",
@@ -450,6 +488,10 @@ mod tests {
         }
         if key == "navigation.sample_period" {
             set.push(format!("navigation.acoustic_period={value}"));
+        }
+        if key == "auv.surface_clearance" {
+            // a depth rating below any clearance tried
+            set.push("auv.max_depth=1000".to_string());
         }
         super::super::default_with(&set).expect("a valid override")
     }

@@ -149,3 +149,18 @@ pub fn profile_factor(profile: &[[f64; 2]], d: f64) -> f64 {
         }
     }
 }
+
+/// d(factor)/d(depth) of [`profile_factor`] at depth `d` (m, ≥ 0), 1/m: the slope of the
+/// piece holding `d` (0 beyond the ends and for fewer than two pairs; at a node, the slope of
+/// the piece below it, as `profile_factor` places the node there).
+pub fn profile_slope(profile: &[[f64; 2]], d: f64) -> f64 {
+    if profile.len() < 2 {
+        return 0.0;
+    }
+    let i = profile.partition_point(|p| p[0] <= d);
+    if i == 0 || i == profile.len() {
+        return 0.0;
+    }
+    let (a, b) = (profile[i - 1], profile[i]);
+    (b[1] - a[1]) / (b[0] - a[0])
+}

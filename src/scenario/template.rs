@@ -79,6 +79,23 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Horizontal speed, m/s, below which the heading ψ = atan(V_y / V_x) is undefined \
              and C1_14 is not applied. 0 ≤ value < max_speed."
         }
+        "auv.max_depth" => {
+            "Depth rating, metres: every AUV keeps z ≥ −max_depth at each step (ours; the \
+             paper has none). Default: the REMUS 100's 100 m rating (Hydroid/Kongsberg \
+             specification sheet). > surface_clearance."
+        }
+        "auv.max_flight_path_angle" => {
+            "γ_max, rad: the AUVs' flight-path angle through the water stays within it, \
+             |V_z| ≤ tan(γ_max)·‖V_h‖ (ours; the paper has none). Default 0.3 rad (17°): a \
+             REMUS keeps its pitch within about ±15–20° (Prestero 2001). 0 < value < π/2."
+        }
+        "auv.min_speed" => {
+            "Cruise floor, m/s: from step 1 on every AUV's horizontal speed through the water \
+             stays at least this (ours; the paper has none), held along each step's segment. \
+             Default 1.2 m/s: a REMUS 100 cruises at ~1.5 m/s and its fins lose authority \
+             below ~1 m/s (Prestero 2001); simulated flights sank at 1.03 m/s. 0 turns the floor off. min_heading_speed ≤ value < \
+             max_speed, or 0."
+        }
         "auv.floor_clearance" => {
             "ε of C2_2: clearance kept above the seafloor, z ≥ Z(x, y) + ε, metres. ≥ 0."
         }

@@ -289,6 +289,35 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         ),
         &["auv.max_speed"],
     );
+    c.float_rel(
+        "auv.max_depth",
+        v.max_depth,
+        // (a non-finite clearance is its own key's error)
+        v.max_depth > v.surface_clearance || !v.surface_clearance.is_finite(),
+        format!(
+            "must be a number of metres above auv.surface_clearance = {} (the depth rating)",
+            num(v.surface_clearance)
+        ),
+        &["auv.surface_clearance"],
+    );
+    c.float(
+        "auv.max_flight_path_angle",
+        v.max_flight_path_angle,
+        v.max_flight_path_angle > 0.0 && v.max_flight_path_angle < std::f64::consts::FRAC_PI_2,
+        "must be an angle in radians with 0 < value < π/2",
+    );
+    c.float_rel(
+        "auv.min_speed",
+        v.min_speed,
+        v.min_speed == 0.0 || (v.min_speed >= v.min_heading_speed && v.min_speed < v.max_speed),
+        format!(
+            "must be 0 (no cruise floor) or a number of m/s with auv.min_heading_speed = {} ≤ \
+             value < auv.max_speed = {}",
+            num(v.min_heading_speed),
+            num(v.max_speed)
+        ),
+        &["auv.min_heading_speed", "auv.max_speed"],
+    );
     c.non_negative(
         "auv.floor_clearance",
         v.floor_clearance,

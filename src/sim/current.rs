@@ -4,7 +4,7 @@
 //! `velocity`), interpolated bilinearly.
 
 use crate::plan::Plan;
-use crate::scenario::{profile_factor, Current};
+use crate::scenario::{profile_factor, profile_slope, Current};
 use crate::seafloor::{self, Crs, Lattice, LoadOptions, Seafloor, SeafloorError};
 use std::path::Path;
 use thiserror::Error;
@@ -242,6 +242,82 @@ impl CurrentField {
     }
 }
 
+impl CurrentField {
+    /// Whether the field changes with position (a depth profile of two or more pairs, or
+    /// grids): the planner then linearises it about its reference.
+    pub fn varies(&self) -> bool {
+        self.grids.is_some() || self.profile.len() >= 2
+    }
+
+    /// The current at `p` and its Jacobian J\[i\]\[j\] = ∂c_i/∂p_j (1/s): the depth profile's
+    /// slope times the surface value on z (z = −depth; none above the surface), the grids'
+    /// bilinear gradient times the profile's factor on x and y (none beyond the grids'
+    /// extent, where the value is held). Piecewise linear in z and bilinear in (x, y): the
+    /// Jacobian is that of the piece holding `p`.
+    pub fn at_and_jacobian(&self, p: [f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+        let d = (-p[2]).max(0.0);
+        let f = profile_factor(&self.profile, d);
+        let df_dz = if p[2] < 0.0 {
+            -profile_slope(&self.profile, d)
+        } else {
+            0.0
+        };
+        let ([u, v], [gu, gv]) = match &self.grids {
+            None => (self.velocity, [[0.0; 2]; 2]),
+            Some(g) => {
+                let e = g.0.extent();
+                let inside =
+                    (e.x_min..=e.x_max).contains(&p[0]) && (e.y_min..=e.y_max).contains(&p[1]);
+                let (x, y) = (p[0].clamp(e.x_min, e.x_max), p[1].clamp(e.y_min, e.y_max));
+                let (u, gu) = g.0.elevation_and_gradient(x, y).unwrap_or((0.0, [0.0; 2]));
+                let (v, gv) = g.1.elevation_and_gradient(x, y).unwrap_or((0.0, [0.0; 2]));
+                let (gu, gv) = if inside {
+                    (gu, gv)
+                } else {
+                    ([0.0; 2], [0.0; 2])
+                };
+                ([u, v], [gu, gv])
+            }
+        };
+        (
+            [f * u, f * v, 0.0],
+            [
+                [f * gu[0], f * gu[1], u * df_dz],
+                [f * gv[0], f * gv[1], v * df_dz],
+                [0.0; 3],
+            ],
+        )
+    }
+}
+
+/// The current the MPC planner plans in, for a scenario's `[current]`: its `velocity` and
+/// `profile`, what `shoal simulate` flies by default. The grid files (`file_east`,
+/// `file_north`), read relative to a plan file's directory, are not planned for: with them
+/// the planner plans in still water, as before it knew the current, and says so in the plan's
+/// warnings.
+pub fn planned(c: &Current) -> Current {
+    if c.file_east.is_some() || c.file_north.is_some() {
+        Current {
+            velocity: [0.0; 2],
+            profile: Vec::new(),
+            file_east: None,
+            file_north: None,
+        }
+    } else {
+        c.clone()
+    }
+}
+
+/// Still water as a `[current]` (what plans that do not model the current record).
+pub fn still() -> Current {
+    Current {
+        velocity: [0.0; 2],
+        profile: Vec::new(),
+        file_east: None,
+        file_north: None,
+    }
+}
+
 /// The bounding box [x_min, x_max, y_min, y_max] of every position of `plan` (each window's
 /// final and Step 1 paths, the AUVs' and the USV's, and the initial state), widened by
 /// `margin` metres.
@@ -433,5 +509,57 @@ mod tests {
             dy: 10.0,
         };
         assert_eq!(nodes_meeting(&l, [15.0, 30.0, 0.0, 99.0]), (1, 3, 0, 10));
+    }
+}
+
+#[cfg(test)]
+mod jacobian_tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The Jacobian of a depth-profiled current agrees with central finite differences
+        /// away from the profile's nodes and the surface.
+        #[test]
+        fn the_jacobian_matches_finite_differences(
+            u in -1.0..1.0f64, v in -1.0..1.0f64, x in -500.0..500.0f64, y in -500.0..500.0f64,
+            z in -150.0..-0.5f64, f0 in 0.0..1.5f64, f1 in 0.0..1.5f64, f2 in 0.0..1.5f64,
+        ) {
+            let c = Current {
+                velocity: [u, v],
+                profile: vec![[0.0, f0], [30.0, f1], [80.0, f2]],
+                file_east: None,
+                file_north: None,
+            };
+            let field = CurrentField::new(&c);
+            prop_assert!(field.varies());
+            for node in [0.0, 30.0, 80.0] {
+                prop_assume!((-z - node).abs() > 1e-3);
+            }
+            let p = [x, y, z];
+            let (c0, j) = field.at_and_jacobian(p);
+            prop_assert_eq!(c0, field.at(p));
+            let h = 1e-5;
+            for col in 0..3 {
+                let (mut a, mut b) = (p, p);
+                a[col] += h;
+                b[col] -= h;
+                let (ca, cb) = (field.at(a), field.at(b));
+                for row in 0..3 {
+                    let fd = (ca[row] - cb[row]) / (2.0 * h);
+                    prop_assert!((fd - j[row][col]).abs() < 1e-7, "J[{row}][{col}] {} against {fd}", j[row][col]);
+                }
+            }
+        }
+    }
+
+    /// A uniform current does not vary, and its Jacobian is zero.
+    #[test]
+    fn a_uniform_current_is_constant() {
+        let field = CurrentField::new(&Current::default());
+        assert!(!field.varies());
+        let (c, j) = field.at_and_jacobian([1.0, 2.0, -30.0]);
+        assert_eq!(c, [0.0, 0.1, 0.0]);
+        assert_eq!(j, [[0.0; 3]; 3]);
     }
 }

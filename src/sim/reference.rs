@@ -5,8 +5,11 @@
 //! hold of input U\[k\] (eqs. (5)–(7), `auv.discretisation = "zoh"`): its state at τ ∈ [0, δ] is
 //! that model discretised with step τ. Under the paper's forward Euler (eq. (8)) the model says
 //! nothing between waypoints, and the reference is the straight segment at constant velocity.
-//! The USV moves at constant velocity U_USV\[k\] between its waypoints (eq. (9)).
+//! The USV moves at constant velocity U_USV\[k\] between its waypoints (eq. (9)). The plan's AUV
+//! velocities are through the water: over ground the current the plan was made in
+//! (`Plan::current`), taken at the step's start as the planner does, adds to them.
 
+use super::current::CurrentField;
 use crate::plan::{Plan, Stage};
 use crate::scenario::Discretisation;
 use crate::vehicle::AuvModel;
@@ -30,6 +33,8 @@ pub struct Reference {
     zoh: bool,
     /// Per window: its start time and the stage flown.
     windows: Vec<(f64, Stage)>,
+    /// The current the plan was made in (its V is through the water; `Plan::current`).
+    current: CurrentField,
 }
 
 /// A point of an AUV's reference: position and velocity, m and m/s (x east, y north, z up).
@@ -61,6 +66,7 @@ impl Reference {
                     (w.start_time, st)
                 })
                 .collect(),
+            current: CurrentField::new(&plan.current),
         }
     }
 
@@ -102,15 +108,22 @@ impl Reference {
         let (p0, v0, u) = (path.position[k], path.velocity[k], path.input[k]);
         if self.zoh {
             if tau <= 0.0 {
+                let c = self.current.at(p0);
                 return RefPoint {
                     position: p0,
-                    velocity: v0,
+                    velocity: std::array::from_fn(|i| v0[i] + c[i]),
                 };
             }
             match AuvModel::from_rates(self.rates, tau, Discretisation::Zoh) {
                 Ok(m) => {
+                    // the planned V is through the water; over ground the plan's current
+                    // c(P[k]) adds to it over the step, as the planner's model has it
                     let (position, velocity) = m.step(p0, v0, u);
-                    RefPoint { position, velocity }
+                    let c = self.current.at(p0);
+                    RefPoint {
+                        position: std::array::from_fn(|i| position[i] + tau * c[i]),
+                        velocity: std::array::from_fn(|i| velocity[i] + c[i]),
+                    }
                 }
                 // rates were validated when the plan was made; fall back to the segment
                 Err(_) => self.segment(path.position[k], path.position[k + 1], tau),

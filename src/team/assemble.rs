@@ -10,14 +10,15 @@
 //! - nonnegative cone: C1_4 and the grid bounds (`bounds`), the linearised floor clearance C2_2
 //!   (`floor`), the USV's and the links' keep-out rows (`keep_out`, over a grid with obstacles),
 //!   C1_14's Turn rows (`heading`), the bands' lower ends (`links`), the bridges' line of sight
-//!   (`bridges`), the lanes' shortfalls (`lanes`), slacks ν ≥ 0;
+//!   (`bridges`), the lanes' shortfalls (`lanes`), the vehicle's envelope (`depth`, `climb`,
+//!   `cruise`), slacks ν ≥ 0;
 //! - second-order cones: the speed limits (`speed`), C1_5/C1_6 (`ranges`), the trust region
 //!   and the AUVs' squared steps τ (`trust`), C1_14's slow alternatives (`heading`), the bands' upper ends (`links`), the
 //!   bridges' ranges (`bridges`).
 
 use super::model::Assembly;
 use super::{bounds, bridges, dynamics, floor, heading, keep_out, links, objective, ranges};
-use super::{lanes, speed, spread, trust, TeamProblem};
+use super::{climb, cruise, depth, lanes, speed, spread, trust, TeamProblem};
 use crate::error::PlanError;
 use crate::trajectory::Trajectory;
 use clarabel::solver::SupportedConeT::NonnegativeConeT;
@@ -43,9 +44,12 @@ pub(super) fn assemble(
     links::objective(p, &mut m); // Step 3 only
     bridges::objective(p, &mut m, penalty); // Step 3 only
     spread::objective(p, r, &mut m); // Step 3 only
+    depth::objective(p, &mut m, penalty);
+    climb::objective(p, &mut m, penalty);
+    cruise::objective(p, &mut m, penalty);
 
     // ---- zero cone ----
-    dynamics::rows(p, &mut m);
+    dynamics::rows(p, r, &mut m);
 
     // ---- nonnegative cone ----
     let first = m.b.len();
@@ -77,6 +81,9 @@ pub(super) fn assemble(
     links::lower_rows(p, r, &mut m); // Step 3 only
     bridges::rows(p, r, &mut m)?; // Step 3 only
     lanes::rows(p, r, &mut m); // Step 3 only, with its lanes
+    depth::rows(p, &mut m);
+    climb::rows(p, r, &mut m);
+    cruise::rows(p, r, &mut m);
     for n in 0..nn {
         for k in 1..=kk {
             m.nonnegative(l.floor_slack(n, k));

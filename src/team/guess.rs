@@ -18,6 +18,10 @@ const FORMATION_SHARE: f64 = 0.9;
 /// 10⁻⁶; the guess stays clear of that).
 const GUESS_SPEED_MARGIN: f64 = 1e-3;
 
+/// Relative margin above the cruise floor's waypoint speed at which the guess's formation
+/// moves, at least, when it can.
+const GUESS_FLOOR: f64 = 1.001;
+
 /// Fractions of the formation's top speed tried by `initial_guess` (never 0: OF1_8's gradient vanishes
 /// when the USV does not move).
 const SPEED_FRACTIONS: [f64; 6] = [1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125];
@@ -59,15 +63,22 @@ pub(super) fn initial_guess(problem: &TeamProblem, previous_heading: Option<f64>
         UsvObjective::Away => (previous_heading.unwrap_or(s.usv.initial_heading), top),
     };
     // the USV's speed: the fraction of `speed` whose formation has the least objective
+    // with a cruise floor, only the fractions at which the AUVs keep it (all, if none does)
+    let floor = super::cruise::rule(problem);
+    let cruising = |f: &&f64| !floor.on() || **f * speed >= floor.waypoint_floor() * GUESS_FLOOR;
+    let fractions: Vec<f64> = match SPEED_FRACTIONS.iter().filter(cruising).count() {
+        0 => vec![1.0],
+        _ => SPEED_FRACTIONS.iter().filter(cruising).copied().collect(),
+    };
     let best = |dir: f64| {
-        SPEED_FRACTIONS
+        fractions
             .iter()
             .map(|f| {
                 let (t, clipped) = formation(problem, dir, f * speed);
                 (problem.evaluate(&t).objective, t, clipped)
             })
             .min_by(|a, b| a.0.total_cmp(&b.0))
-            .expect("SPEED_FRACTIONS is not empty")
+            .expect("at least one fraction")
     };
     let ahead = best(dir);
     if !(s.usv.objective == UsvObjective::Away && ahead.2) {
@@ -116,6 +127,9 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
     let top = -s.auv.surface_clearance;
     let height = s.auv.floor_clearance + GUESS_HEIGHT;
     let vmax = s.auv.max_speed * (1.0 - GUESS_SPEED_MARGIN);
+    // the envelope: the depth rating, and the flight-path angle's share of the horizontal speed
+    let deepest = -s.auv.max_depth + 1.0;
+    let slope = super::climb::rule(problem).slope() * (1.0 - GUESS_SPEED_MARGIN);
     let auv_u = problem
         .start
         .auvs
@@ -127,21 +141,39 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
                 .map(|&uk| {
                     let h = toward(p, uk);
                     let ahead = [p[0] + h[0] * dt, p[1] + h[1] * dt, 0.0];
-                    let z = (problem.keep_out_linearisation(ahead).0 + height).min(top);
-                    // the descent takes what the horizontal speed leaves of V_max
-                    let room = (vmax * vmax - h[0] * h[0] - h[1] * h[1]).max(0.0).sqrt();
-                    let target = [h[0], h[1], ((z - p[2]) / dt).clamp(-room, room)];
+                    let z = (problem.keep_out_linearisation(ahead).0 + height)
+                        .max(deepest)
+                        .min(top);
+                    // the descent takes what the horizontal speed leaves of V_max, within the
+                    // flight-path angle
+                    let room = (vmax * vmax - h[0] * h[0] - h[1] * h[1])
+                        .max(0.0)
+                        .sqrt()
+                        .min(slope * h[0].hypot(h[1]));
+                    // through the water: the formation's velocity over ground less the current
+                    let c = problem.drift(p);
+                    let w = [h[0] - c[0], h[1] - c[1]];
+                    let room = room.min(slope * w[0].hypot(w[1]));
+                    let target = [w[0], w[1], ((z - p[2]) / dt).clamp(-room, room)];
                     // deadbeat velocity: V[k+1] = vv·V[k] + vu·U[k] = target
                     let input: [f64; 3] =
                         std::array::from_fn(|i| (target[i] - m.vv[i] * v[i]) / m.vu[i]);
-                    (p, v) = m.step(p, v, input);
+                    let (q, vn) = m.step(p, v, input);
+                    (p, v) = (std::array::from_fn(|i| q[i] + dt * c[i]), vn);
                     input
                 })
                 .collect()
         })
         .collect::<Vec<_>>();
     debug_assert_eq!(auv_u.len(), nn);
-    let t = Trajectory::simulate(&problem.start, usv_u, auv_u, &problem.auv, &problem.usv);
+    let t = Trajectory::simulate_in(
+        &problem.start,
+        usv_u,
+        auv_u,
+        &problem.auv,
+        &problem.usv,
+        &|p| problem.drift(p),
+    );
     (t, clipped)
 }
 
@@ -151,10 +183,12 @@ mod tests {
     use crate::scenario::{Scenario, WeightScaling};
     use crate::team::TeamProblem;
 
-    /// How far the USV goes in the first reference of the default scenario with `n` AUVs.
+    /// How far the USV goes in the first reference of the default scenario with `n` AUVs
+    /// (without the cruise floor: `the_guess_keeps_the_cruise_floor` has it).
     fn guessed_distance(n: usize, scaling: WeightScaling) -> f64 {
         let mut s = Scenario::default();
         s.team.auvs = n;
+        s.auv.min_speed = 0.0;
         if scaling == WeightScaling::Sum {
             // the weights of before issue 14, tuned as sums for 5 AUVs
             (s.weights.w1, s.weights.w2, s.weights.w5) = (1e3, 1.0, 1e-4);
@@ -238,5 +272,27 @@ mod tests {
         assert!((guessed_distance(20, WeightScaling::PerAuv) - 3000.0).abs() < 1.0);
         assert!((guessed_distance(5, WeightScaling::Sum) - 3000.0).abs() < 1.0);
         assert!(guessed_distance(20, WeightScaling::Sum) < 400.0);
+    }
+
+    /// With the cruise floor the formation the team could afford at a crawl moves at least at
+    /// the floor (the 20 AUVs of the paper's sums would creep at 0.2 m/s, where a REMUS's fins
+    /// hold nothing), and every AUV of the guess keeps it from step 1 on.
+    #[test]
+    fn the_guess_keeps_the_cruise_floor() {
+        let mut s = Scenario::default();
+        s.team.auvs = 20;
+        (s.weights.w1, s.weights.w2, s.weights.w5) = (1e3, 1.0, 1e-4);
+        s.weights.scaling = WeightScaling::Sum;
+        let (floor, _) = scenario_floor(&s, std::path::Path::new("")).unwrap();
+        let keep_out = floor.keep_out();
+        let p = TeamProblem::first_window(&s, &floor, &keep_out).unwrap();
+        let g = p.initial_guess(None);
+        let rule = crate::team::cruise::rule(&p);
+        for (n, v) in g.auv_v.iter().enumerate() {
+            for (k, v) in v.iter().enumerate().skip(1) {
+                let speed = v[0].hypot(v[1]);
+                assert!(speed >= rule.waypoint_floor(), "AUV {n} k = {k}: {speed}");
+            }
+        }
     }
 }

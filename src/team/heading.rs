@@ -45,6 +45,13 @@
 //!
 //! θ here is the model's, tightened by [`HEADING_MARGIN`].
 //!
+//! With the cruise floor (`cruise`, `auv.min_speed` > 0) every velocity from step 1 on keeps a
+//! speed above v_min, so the slow alternatives are gone but where the floor does not apply, the
+//! window's fixed start (the mission's start at rest: `Piece::Free`). The measure is then the
+//! turn alone, v = max(0, g(a, b)), and the model keeps the Turn piece (`HeadingRule::cruise`).
+//! `auv.min_heading_speed` keeps its meaning: the speed below which a velocity has no heading
+//! (the checker's C1_14 and the plan's recorded heading), now met only at such a start.
+//!
 //! Departure: this replaces the paper's C2_3/C2_4 (eq. (11)), which bound each velocity
 //! component by a multiple of the same component one step earlier: a component that is zero
 //! (the AUVs start at rest) would then stay zero for ever.
@@ -88,6 +95,10 @@ pub struct HeadingRule {
     /// tan of half the model's θ.
     half_tan: f64,
     pub v_min: f64,
+    /// Whether the cruise floor (`cruise`) holds every velocity but a slow window start above
+    /// v_min: then the "slow" alternatives are no alternatives (the floor forbids them), the
+    /// measure is the turn alone, and the model keeps the Turn piece.
+    pub cruise: bool,
 }
 
 /// The coefficients c of the two rows ±(d̂ × v) − t·(d̂·v) ≤ ν, for the unit axis d̂: c·v is the
@@ -122,6 +133,13 @@ impl HeadingRule {
             dt,
             s.auv.min_heading_speed,
         )
+        .with_cruise(s.auv.min_speed > 0.0)
+    }
+
+    /// The same rule with the cruise floor on or off (see [`HeadingRule::cruise`]).
+    pub fn with_cruise(mut self, cruise: bool) -> HeadingRule {
+        self.cruise = cruise;
+        self
     }
 
     /// The rule for a largest turn rate `rate` (rad/s) over steps of `dt` s, the model's rate
@@ -133,6 +151,7 @@ impl HeadingRule {
             model,
             half_tan: (0.5 * model.tan.atan()).tan(),
             v_min,
+            cruise: false,
         }
     }
 
@@ -200,6 +219,13 @@ impl HeadingRule {
     pub fn violation(&self, a: [f64; 2], b: [f64; 2], fixed_before: bool) -> f64 {
         let bound = self.slow_bound();
         let (sa, sb) = (norm(a) - bound, norm(b) - bound);
+        if self.cruise {
+            // only the window's slow start is exempt: the floor charges any other slow speed
+            if (fixed_before && sa < 0.0) || norm(a) == 0.0 {
+                return 0.0;
+            }
+            return self.model.violation(a, b).max(0.0);
+        }
         if sa < 0.0 || sb < 0.0 {
             return 0.0;
         }
@@ -226,6 +252,15 @@ impl HeadingRule {
         let (sa, sb) = (norm(a) - bound, norm(b) - bound);
         if fixed_before && sa < 0.0 {
             return Piece::Free;
+        }
+        if self.cruise {
+            // the floor leaves the turn as the only alternative; a reference velocity that is
+            // exactly zero has no direction to turn about (the cruise rows lift it)
+            return if norm(a) == 0.0 {
+                Piece::SlowBefore
+            } else {
+                Piece::Turn
+            };
         }
         let directed = norm(a) >= DIRECTION_FRACTION * self.v_min;
         let turn = if directed {

@@ -11,8 +11,9 @@
 //! the slacks ν_u[1..=K] of the USV's keep-out rows; then, per planned link l and step k, the
 //! slack ν_los[l][k] of its line-of-sight rows (P5 only, over every grid); after them, per
 //! bridge b (P5's `bridges`), the slacks σ_b of its range and ν_b of its line of sight; then,
-//! per lane pair i and step k, the shortfall h[i][k] of P5's lanes term (`lanes`), and last, with
-//! the lanes, per AUV n and step k, its height a[n][k] above the survey altitude.
+//! per lane pair i and step k, the shortfall h[i][k] of P5's lanes term (`lanes`), then, with
+//! the lanes, per AUV n and step k, its height a[n][k] above the survey altitude, and last, per
+//! AUV n and step k, the slacks of the vehicle's envelope (`depth`, `climb`, `cruise`).
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -34,12 +35,35 @@ impl Layout {
     const AUV_BLOCK: usize = 13;
 
     pub fn variables(&self) -> usize {
+        self.envelope_base() + Self::ENVELOPE * self.n * self.k
+    }
+    /// Slacks per AUV and step of the vehicle's envelope: `depth`, `climb`, `cruise`.
+    const ENVELOPE: usize = 3;
+    fn envelope_base(&self) -> usize {
         self.altitude_base()
             + if self.lane_pairs > 0 {
                 self.n * self.k
             } else {
                 0
             }
+    }
+    fn envelope(&self, n: usize, k: usize, which: usize) -> usize {
+        debug_assert!(n < self.n && k >= 1 && k <= self.k);
+        self.envelope_base() + Self::ENVELOPE * (n * self.k + (k - 1)) + which
+    }
+    /// ν_d\[n\]\[k\]: how far AUV n is below its depth rating at step k (`depth`), m.
+    pub fn depth_slack(&self, n: usize, k: usize) -> usize {
+        self.envelope(n, k, 0)
+    }
+    /// ν_γ\[n\]\[k\]: how far AUV n's vertical speed exceeds its flight-path angle's share
+    /// at step k (`climb`), m/s.
+    pub fn climb_slack(&self, n: usize, k: usize) -> usize {
+        self.envelope(n, k, 1)
+    }
+    /// ν_c\[n\]\[k\]: how far AUV n's horizontal speed falls short of the cruise floor at
+    /// step k (`cruise`), m/s.
+    pub fn cruise_slack(&self, n: usize, k: usize) -> usize {
+        self.envelope(n, k, 2)
     }
     fn altitude_base(&self) -> usize {
         self.lane_base() + self.lane_pairs * (self.k - 1)
@@ -289,6 +313,13 @@ mod tests {
             for a in 0..if lane_pairs > 0 { n } else { 0 } {
                 for s in 1..=k {
                     mark(l.lane_altitude(a, s), 1);
+                }
+            }
+            for a in 0..n {
+                for s in 1..=k {
+                    mark(l.depth_slack(a, s), 1);
+                    mark(l.climb_slack(a, s), 1);
+                    mark(l.cruise_slack(a, s), 1);
                 }
             }
             assert!(

@@ -5,10 +5,13 @@
 //!
 //! | file | family |
 //! |---|---|
-//! | `dynamics` | C1_1: the USV's eq. (9), the AUVs' eqs. (5)–(8) |
+//! | `dynamics` | C1_1: the USV's eq. (9), the AUVs' eqs. (5)–(8) in the current (eq. (8)'s ϖ) |
 //! | `speed` | the USV's speed limit, C1_7 |
 //! | `ranges` | C1_5 (d_max), C1_6 (d_s at k = K) |
 //! | `bounds` | C1_4 (underwater), the grid bounds |
+//! | `depth` | ours: the depth rating, z ≥ −`auv.max_depth` |
+//! | `climb` | ours: the flight-path angle, \|V_z\| ≤ tan(γ_max)·‖V_h‖ |
+//! | `cruise` | ours: the cruise floor, ‖V_h‖ ≥ `auv.min_speed` from step 1 on |
 //! | `floor` | C2_2, floor clearance along every segment (C1_12) |
 //! | `heading` | C1_14, heading rate, as a disjunction |
 //! | `keep_out` | the USV's keep-out rows (obstacle cells), P5's line of sight (C1_13) |
@@ -31,6 +34,9 @@
 mod assemble;
 mod bounds;
 mod bridges;
+mod climb;
+mod cruise;
+mod depth;
 mod detour;
 mod dynamics;
 mod floor;
@@ -59,6 +65,7 @@ use crate::error::{PlanError, Step};
 use crate::scenario::{A2aGraph, AwayFrom, Scenario, UsvObjective};
 use crate::scp::{self, Evaluation, Iteration, ScpOutcome, ScpProblem};
 use crate::seafloor::Seafloor;
+use crate::sim::current::{planned, CurrentField};
 use crate::trajectory::{Start, Trajectory};
 use crate::vehicle::{AuvModel, UsvModel};
 use heading::HeadingRule;
@@ -104,6 +111,9 @@ pub struct TeamProblem<'a> {
     gap: f64,
     /// The violation the last model's solution kept (`Assembly::kept_violation`).
     kept: f64,
+    /// The current the AUVs are planned in (`sim::current::planned`): their V is the velocity
+    /// through the water, and the current moves their positions (`dynamics`).
+    current: CurrentField,
 }
 
 impl<'a> TeamProblem<'a> {
@@ -144,7 +154,13 @@ impl<'a> TeamProblem<'a> {
             kept: 0.0,
             solver: None,
             gap: crate::conic::GAP_TOL,
+            current: CurrentField::new(&planned(&scenario.current)),
         }
+    }
+
+    /// The current at p, m/s (`sim::current::planned` of the scenario's `[current]`).
+    pub fn drift(&self, p: [f64; 3]) -> [f64; 3] {
+        self.current.at(p)
     }
 
     /// The first window of `scenario` over `floor` (keep-out field `keep_out`): the vehicle
@@ -400,7 +416,9 @@ impl<'a> TeamProblem<'a> {
                     .collect()
             })
             .collect();
-        Trajectory::simulate(&self.start, usv_u, auv_u, &self.auv, &self.usv)
+        Trajectory::simulate_in(&self.start, usv_u, auv_u, &self.auv, &self.usv, &|p| {
+            self.drift(p)
+        })
     }
 
     /// The largest violations of the constraints the model holds hard, over every AUV and
@@ -600,6 +618,12 @@ impl ScpProblem for TeamProblem<'_> {
                 let hard = ranges::violation(self, t, n, k) + bounds::violation(self, t, n, k);
                 sum += hard;
                 worst = worst.max(hard);
+                // the vehicle's envelope: metres below the rating, m/s of climb and of speed
+                let d = depth::violation(self, t, n, k);
+                let c = climb::violation(self, t, n, k);
+                let v = cruise::violation(self, t, n, k);
+                sum += d + dt * (c + v);
+                worst = worst.max(d).max(c).max(v);
             }
         }
         for k in 1..=l.k {
@@ -640,12 +664,13 @@ impl ScpProblem for TeamProblem<'_> {
             .zip(&previous.auv_u)
             .map(|(a, b)| ahead(a, b, beta))
             .collect();
-        Some(Trajectory::simulate(
+        Some(Trajectory::simulate_in(
             &self.start,
             usv_u,
             auv_u,
             &self.auv,
             &self.usv,
+            &|p| self.drift(p),
         ))
     }
 
@@ -692,6 +717,18 @@ impl ScpProblem for TeamProblem<'_> {
                 let (_, angle) = heading::violation(self, t, n, k);
                 if angle > worst.0 {
                     worst = (angle, heading::detail(n, k, angle));
+                }
+                let d = depth::violation(self, t, n, k);
+                if d > worst.0 {
+                    worst = (d, depth::detail(self, n, k, d));
+                }
+                let c = climb::violation(self, t, n, k);
+                if c > worst.0 {
+                    worst = (c, climb::detail(self, t, n, k, c));
+                }
+                let v = cruise::violation(self, t, n, k);
+                if v > worst.0 {
+                    worst = (v, cruise::detail(self, n, k, v));
                 }
             }
         }

@@ -93,6 +93,8 @@ fn spec(windows: usize) -> Spec {
     s.windows = windows;
     s.horizon.steps = K;
     s.horizon.dt = DT;
+    // a cruise floor the hand-built AUVs keep (they ramp to 1 m/s: 0.79 m/s at k = 1)
+    s.auv.min_speed = 0.5;
     let e = rates(&s)[0];
     let auv = |w: usize| -> Vec<Vec<[f64; 3]>> {
         (0..2)
@@ -291,6 +293,7 @@ fn build_with(
     };
     let mut plan = Plan {
         warnings: vec![],
+        current: shoal::sim::current::still(),
         format: FORMAT.into(),
         method: shoal::plan::METHOD_MPC.into(),
         shoal_version: "test".into(),
@@ -510,6 +513,64 @@ fn auv_near_the_surface_fails_c1_4_only() {
     assert_fails_exactly(&r, &["C1_4 underwater"]);
     let f = r.family("C1_4 underwater").unwrap();
     assert!((f.worst_margin + 0.5).abs() < 1e-12, "{f:?}");
+}
+
+#[test]
+fn below_the_depth_rating_fails_the_depth_rating_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    sp.s.auv.max_depth = 55.0; // AUV 1 runs at −60 m
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(&r, &["depth rating"]);
+    let f = r.family("depth rating").unwrap();
+    assert!(f.where_.contains("AUV 1"), "{}", f.where_);
+    assert!((f.worst_margin + 5.0).abs() < 1e-9, "{f:?}");
+}
+
+#[test]
+fn a_steep_climb_fails_the_flight_path_angle_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    let heave = rates(&sp.s)[2];
+    for u in &mut sp.auv_u[0][0] {
+        u[2] = 0.2 * heave; // climbs at 0.2 m/s (terminal): 11° at 1 m/s
+    }
+    sp.s.auv.max_flight_path_angle = 0.1; // 5.7°
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(&r, &["flight-path angle"]);
+    let f = r.family("flight-path angle").unwrap();
+    assert!(f.where_.contains("AUV 0"), "{}", f.where_);
+    // within the default 0.3 rad (17°) the same climb passes
+    sp.s.auv.max_flight_path_angle = 0.3;
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert!(r.passed(), "\n{}", r.table());
+}
+
+#[test]
+fn a_slow_auv_fails_the_cruise_floor_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    sp.s.auv.min_speed = 0.9; // k = 1 is at 0.79 m/s, ramping from rest
+    let r = check_plan(&build(&sp, &floor), &floor);
+    assert_fails_exactly(&r, &["cruise floor"]);
+    let f = r.family("cruise floor").unwrap();
+    assert!(f.where_.contains("k = 1"), "{}", f.where_);
+}
+
+/// Regression: a plan may pass its waypoints at cruise speed and stop between them. Under the
+/// zero-order hold the velocity runs along the line between consecutive waypoints' velocities,
+/// so a reversal passes through rest however fast its ends: the floor fails between them.
+#[test]
+fn regression_a_reversal_between_fast_waypoints_fails_the_cruise_floor() {
+    let floor = flat();
+    let mut sp = spec(1);
+    let e = rates(&sp.s)[0];
+    sp.s.auv.max_heading_rate = 1.0; // C1_14 allows the reversal
+    sp.auv_u[0][0][2] = [-e, 0.0, 0.0];
+    let r = check_plan(&build(&sp, &floor), &floor);
+    let f = r.family("cruise floor").unwrap();
+    assert!(!f.passed(), "\n{}", r.table());
+    assert!(f.where_.contains("between the waypoints"), "{}", f.where_);
 }
 
 /// A flat floor at −100 m, 5 m cells, with one node at `peak` raised to −10 m: a 5 m pyramid.
