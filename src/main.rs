@@ -793,6 +793,7 @@ fn simulate(
             Gate::Check
         },
         cancel: Some(&SIM_CANCEL),
+        max_iterations: shoal::sim::run::FACTOR_GRAPH_ITERATIONS,
     };
     let start = std::time::Instant::now();
     let flown = shoal::sim::fly_plan(&p, &name, &floor, &options, &mut |event| match event {

@@ -182,16 +182,23 @@ pub struct Options<'a> {
     /// finished by then are returned, marked [`SimRecord::incomplete`]; with none finished,
     /// [`SimError::Interrupted`].
     pub cancel: Option<&'a AtomicBool>,
+    /// The factor graph's Levenberg–Marquardt iteration limit ([`FACTOR_GRAPH_ITERATIONS`]).
+    pub max_iterations: usize,
 }
 
+/// The factor graph's Levenberg–Marquardt iteration limit in `shoal simulate`.
+pub const FACTOR_GRAPH_ITERATIONS: usize = 200;
+
 impl Options<'_> {
-    /// `runs` runs from `seed`, the plan trusted, no cancel flag.
+    /// `runs` runs from `seed`, the plan trusted, no cancel flag, the factor graph's usual
+    /// iteration limit.
     pub fn new(seed: u64, runs: usize) -> Options<'static> {
         Options {
             seed,
             runs,
             gate: Gate::Trust,
             cancel: None,
+            max_iterations: FACTOR_GRAPH_ITERATIONS,
         }
     }
 }
@@ -450,7 +457,7 @@ pub fn fly_plan(
                 let ekf = estimate::filter(&whole).and_then(finite);
                 // from the filter's estimate, or from dead reckoning when the filter failed
                 let guess = ekf.as_ref().map_or(&[][..], |e| &e.position[..]);
-                let fg = smooth_mission(&whole, guess).and_then(finite);
+                let fg = smooth_mission(&whole, guess, options.max_iterations).and_then(finite);
                 match fg {
                     Ok(fg) => estimates.push(record_estimate(
                         policy,
@@ -545,12 +552,13 @@ fn flown_name(flown: Flown) -> &'static str {
 fn smooth_mission(
     whole: &estimate::Problem,
     guess: &[Vec<[f64; 3]>],
+    max_iterations: usize,
 ) -> Result<Estimate, EstimateError> {
     // a result one Gauss–Newton step could still improve by up to ½ in ½χ² (a step of one
     // posterior standard deviation in Mahalanobis length, spread over thousands of
     // coordinates) is kept: the estimators are judged on metres of error
     let options = estimate::SmoothOptions {
-        max_iterations: 200,
+        max_iterations,
         acceptance: 0.5,
         ..estimate::SmoothOptions::default()
     };
