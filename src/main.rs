@@ -1200,7 +1200,21 @@ fn plan_into(
         eprintln!("warning: {}", printable(w));
     }
     if how.json {
-        println!("{}", json_summary(&written, out, &files, &check));
+        let mut summary = json_summary(&written, out, &files, &check);
+        if let (Some(record), Some(map)) = (&flown, summary.as_object_mut()) {
+            // --fly: where the flight is, and its metrics (flown and planned)
+            map.insert(
+                "flight".into(),
+                serde_json::json!({
+                    "sim": out.join(shoal::output_set::PLAN_FLIGHT),
+                    "metrics": record.flight.metrics,
+                }),
+            );
+        }
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&summary).expect("a summary serialises")
+        );
     }
     if tables {
         println!(
@@ -1377,7 +1391,7 @@ fn json_summary(
     out: &Path,
     files: &[String],
     check: &shoal::check::CheckReport,
-) -> String {
+) -> serde_json::Value {
     let windows: Vec<serde_json::Value> = p
         .windows
         .iter()
@@ -1392,7 +1406,7 @@ fn json_summary(
         })
         .collect();
     let failing: Vec<&str> = check.failures().iter().map(|f| f.name).collect();
-    serde_json::to_string_pretty(&serde_json::json!({
+    serde_json::json!({
         "plan": out.join("plan.json"),
         "files": files,
         "seed": p.scenario.seed,
@@ -1400,8 +1414,7 @@ fn json_summary(
         "warnings": p.warnings,
         "metrics": p.metrics,
         "windows": windows,
-    }))
-    .expect("a summary serialises")
+    })
 }
 
 /// The study's bases: each scenario file (or "default") with `set` applied.

@@ -684,4 +684,25 @@ fn plan_fly_flies_the_plan_and_prints_flown_beside_planned() {
         !sim.exists(),
         "a flight of an earlier plan stands beside the new one"
     );
+    // for scripts: the JSON summary says where the flight is and what it measured
+    let (code, out, err) = common::run(
+        shoal()
+            .args([
+                "plan",
+                "--no-plot",
+                "--json",
+                "--fly",
+                "-o",
+                dir.to_str().unwrap(),
+            ])
+            .args(small),
+    );
+    assert_eq!(code, 0, "{out}{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(json["flight"]["sim"], sim.display().to_string());
+    assert!(
+        json["flight"]["metrics"]["samples_below_floor"].is_u64(),
+        "{out}"
+    );
+    assert!(json["files"].to_string().contains("sim.json"), "{out}");
 }
