@@ -9,8 +9,8 @@
 //! track knows it), so it crabs across a current instead of being carried off its track.
 //!
 //! The depth loop is a REMUS-style outer loop on the pitch. It asks for a vertical speed, the
-//! plan's own (feed-forward of the planned flight-path angle) plus the depth error over
-//! [`T_DEPTH`], limited to [`MAX_DEPTH_RATE`]; turns it into a flight-path angle
+//! plan's own (feed-forward of the planned flight-path angle) plus the depth error over 8 s,
+//! limited to 0.5 m/s (a REMUS autopilot's depth-rate limit); turns it into a flight-path angle
 //! γ = asin(ż/V) at the speed through the water V (so the loop's gain in pitch per metre is
 //! scheduled as 1/V and its bandwidth does not change with speed); and adds the angle of
 //! attack the vehicle trims at for that speed ([`super::envelope::trim`]: 6.7 N of buoyancy
