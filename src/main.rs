@@ -85,6 +85,11 @@ enum Command {
         /// e.g. from scripts/ompl_rrt_star.py), for the same scenario; checked like any plan.
         #[arg(long, value_name = "FILE", conflicts_with = "method")]
         waypoints: Option<PathBuf>,
+        /// Also fly the plan once it passes its check (as `shoal simulate` does, at its
+        /// default settings and the plan's seed): OUT/sim.json and the simulation's figures
+        /// join the plan's outputs, and the flown figures are printed beside the planned ones.
+        #[arg(long)]
+        fly: bool,
     },
     /// Verify every constraint of a plan from the plan file and the seafloor alone.
     Check {
@@ -381,6 +386,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             json,
             method,
             waypoints,
+            fly,
         } => {
             let flag = seafloor.map(|f| {
                 let text = format!("seafloor.file={}", toml_string(&f));
@@ -402,6 +408,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 json,
                 method,
                 waypoints,
+                fly,
             };
             plan(&s, source, set, scenario.as_deref(), &out, how)
         }
@@ -793,6 +800,7 @@ fn simulate(
             Gate::Check
         },
         cancel: Some(&SIM_CANCEL),
+        max_iterations: shoal::sim::run::FACTOR_GRAPH_ITERATIONS,
     };
     let start = std::time::Instant::now();
     let flown = shoal::sim::fly_plan(&p, &name, &floor, &options, &mut |event| match event {
@@ -962,6 +970,8 @@ struct How {
     method: Method,
     /// Another planner's waypoints file, instead of planning.
     waypoints: Option<PathBuf>,
+    /// Fly the plan once checked (`--fly`).
+    fly: bool,
 }
 
 /// Progress on stderr: a line per step, and on a terminal a spinner with the SCP iteration,
@@ -1157,6 +1167,27 @@ fn plan_into(
         )
     })?;
     let check = shoal::check::check_plan(&written, &floor);
+    // --fly: the plan that passed its check is flown as `shoal simulate` would fly it, and its
+    // record and figures join the plan's set, moved into place with it
+    // a plan that cannot be flown (a current it cannot stem) is still written, and said so
+    let (flown, fly_error) = match how.fly && check.passed() {
+        true => match fly_written(&written, &floor, out, set.dir(), how.figures, how.quiet) {
+            Ok(record) => (Some(record), None),
+            Err(e) => {
+                // what the flight had written goes: the set holds the plan alone
+                let _ = std::fs::remove_file(set.dir().join(shoal::output_set::PLAN_FLIGHT));
+                for stem in shoal::figures::SIM_FIGURES {
+                    for ext in ["png", "svg"] {
+                        let _ = std::fs::remove_file(
+                            set.dir().join("figures").join(format!("{stem}.{ext}")),
+                        );
+                    }
+                }
+                (None, Some(error_chain(&e)))
+            }
+        },
+        false => (None, None),
+    };
     if !stop.gate.enter() {
         // Ctrl-C came first: its handler is ending the process
         loop {
@@ -1169,7 +1200,21 @@ fn plan_into(
         eprintln!("warning: {}", printable(w));
     }
     if how.json {
-        println!("{}", json_summary(&written, out, &files, &check));
+        let mut summary = json_summary(&written, out, &files, &check);
+        if let (Some(record), Some(map)) = (&flown, summary.as_object_mut()) {
+            // --fly: where the flight is, and its metrics (flown and planned)
+            map.insert(
+                "flight".into(),
+                serde_json::json!({
+                    "sim": out.join(shoal::output_set::PLAN_FLIGHT),
+                    "metrics": record.flight.metrics,
+                }),
+            );
+        }
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&summary).expect("a summary serialises")
+        );
     }
     if tables {
         println!(
@@ -1181,6 +1226,19 @@ fn plan_into(
             files.len()
         );
         print!("{}", check.table());
+        if let Some(record) = &flown {
+            println!();
+            print!("{}", printable_lines(&shoal::sim::summary::table(record)));
+            println!();
+            print!(
+                "{}",
+                printable_lines(&shoal::sim::summary::beside_plan(record))
+            );
+            println!(
+                "flew the plan: wrote {}",
+                out.join(shoal::output_set::PLAN_FLIGHT).display()
+            );
+        }
         let unconverged = written.unconverged_stages();
         if !check.passed() {
             println!("check: VIOLATED (see FAIL rows)");
@@ -1200,6 +1258,18 @@ fn plan_into(
     } else if !check.passed() {
         eprintln!("check: VIOLATED (run `shoal check` on the plan for the table)");
     }
+    if let Some(e) = &fly_error {
+        eprintln!(
+            "error: the plan is written, not flown: {}",
+            printable_lines(e)
+        );
+    }
+    if how.fly && !check.passed() {
+        eprintln!(
+            "not flown (--fly): the plan fails its check, and shoal simulate flies only plans \
+             that pass (shoal simulate --unchecked flies it anyway)"
+        );
+    }
     if cut_short {
         eprintln!(
             "interrupted: wrote the {} of {} windows planned before Ctrl-C to {} (the plan records \
@@ -1211,11 +1281,46 @@ fn plan_into(
         );
         return Ok(ExitCode::from(130));
     }
-    Ok(if check.passed() {
+    Ok(if check.passed() && fly_error.is_none() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
     })
+}
+
+/// `shoal plan --fly`: fly `plan` (already checked) as `shoal simulate OUT/plan.json` would at
+/// its default settings (one run, the plan's seed), and write its record (and, with `figures`,
+/// the simulation's figures) into the plan's staging directory `staging`.
+fn fly_written(
+    plan: &shoal::Plan,
+    floor: &shoal::Seafloor,
+    out: &Path,
+    staging: &Path,
+    figures: bool,
+    quiet: bool,
+) -> Result<shoal::sim::SimRecord> {
+    let name = out.join("plan.json").display().to_string();
+    if !quiet {
+        eprintln!("flying {name} (--fly)");
+    }
+    let options = shoal::sim::Options::new(plan.scenario.seed, 1);
+    let record = shoal::sim::fly_plan(plan, &name, floor, &options, &mut |_| {})
+        .with_context(|| format!("flying {name} (--fly)"))?;
+    shoal::sim::write(&record, &staging.join(shoal::output_set::PLAN_FLIGHT))?;
+    if figures {
+        shoal::figures::write_sim(plan, floor, &record, &staging.join("figures"))
+            .context("drawing the figures of the flight (--fly)")?;
+    }
+    for f in &record.failed_estimates {
+        eprintln!(
+            "warning: {} {} {} failed: {}",
+            f.flown,
+            f.policy.name(),
+            f.estimator,
+            f.brief()
+        );
+    }
+    Ok(record)
 }
 
 /// What `shoal plan` and its Ctrl-C handler share.
@@ -1286,7 +1391,7 @@ fn json_summary(
     out: &Path,
     files: &[String],
     check: &shoal::check::CheckReport,
-) -> String {
+) -> serde_json::Value {
     let windows: Vec<serde_json::Value> = p
         .windows
         .iter()
@@ -1301,7 +1406,7 @@ fn json_summary(
         })
         .collect();
     let failing: Vec<&str> = check.failures().iter().map(|f| f.name).collect();
-    serde_json::to_string_pretty(&serde_json::json!({
+    serde_json::json!({
         "plan": out.join("plan.json"),
         "files": files,
         "seed": p.scenario.seed,
@@ -1309,8 +1414,7 @@ fn json_summary(
         "warnings": p.warnings,
         "metrics": p.metrics,
         "windows": windows,
-    }))
-    .expect("a summary serialises")
+    })
 }
 
 /// The study's bases: each scenario file (or "default") with `set` applied.

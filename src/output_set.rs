@@ -26,6 +26,9 @@ use std::sync::atomic::{AtomicU8, Ordering};
 /// The plan set's manifest in the output directory.
 pub const MANIFEST: &str = ".shoal-outputs.json";
 
+/// The flight `shoal plan --fly` writes into the plan's set.
+pub const PLAN_FLIGHT: &str = "sim.json";
+
 /// Prefix of staging directories.
 const STAGING: &str = ".shoal-staging-";
 
@@ -37,7 +40,9 @@ const JOURNAL: &str = ".shoal-commit.json";
 #[serde(rename_all = "snake_case")]
 pub enum Kind {
     /// `shoal plan`: plan.json, usv.csv, auvN.csv and figures/STEM.png|svg of
-    /// [`crate::figures::FIGURES`] and [`crate::figures::TABLE`].
+    /// [`crate::figures::FIGURES`] and [`crate::figures::TABLE`]; with `--fly`, its flight
+    /// too: sim.json and figures/STEM.png|svg of [`crate::figures::SIM_FIGURES`] (so a plan
+    /// written without `--fly` removes an earlier plan's flight from its manifest).
     Plan,
     /// `shoal simulate`: the record (its file name, e.g. "sim.json") and
     /// figures/STEM.png|svg of [`crate::figures::SIM_FIGURES`].
@@ -78,6 +83,8 @@ impl Kind {
                         .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
                     || figure(&crate::figures::FIGURES)
                     || figure(&[crate::figures::TABLE])
+                    || rel == PLAN_FLIGHT
+                    || figure(&crate::figures::SIM_FIGURES)
             }
             Kind::Simulation(f) => rel == f || figure(&crate::figures::SIM_FIGURES),
             Kind::Compare => {

@@ -604,3 +604,60 @@ fn regression_check_escapes_terminal_codes_from_the_plan() {
     );
     assert!(out.contains("\\u{1b}[32mconverged"), "{out}");
 }
+
+#[test]
+fn plan_fly_flies_the_plan_and_prints_flown_beside_planned() {
+    let small = ["--set", "team.auvs=2", "--set", "horizon.steps=6"];
+    let (dir, code, out, err) = plan_cli("plan_fly", &[&small[..], &["--fly"]].concat());
+    assert_eq!(code, 0, "{out}{err}");
+    let sim = dir.join("sim.json");
+    let r: shoal::sim::SimRecord =
+        serde_json::from_slice(&std::fs::read(&sim).expect("sim.json written")).unwrap();
+    assert_eq!(r.auvs, 2);
+    assert_eq!(r.plan, dir.join("plan.json").display().to_string());
+    for row in [
+        "flown beside planned",
+        "samples below the floor",
+        "closest two AUVs",
+        "planned-link pings received",
+        "epochs every AUV linked to the USV",
+        "chain error at the last window's end",
+    ] {
+        assert!(out.contains(row), "{row}: {out}");
+    }
+    // the flight is part of the plan's set: its manifest lists it, and a plan written without
+    // --fly takes the earlier plan's flight away with it
+    let manifest = std::fs::read_to_string(dir.join(shoal::output_set::MANIFEST)).unwrap();
+    assert!(manifest.contains("\"sim.json\""), "{manifest}");
+    let (code, out, err) = common::run(
+        shoal()
+            .args(["plan", "--no-plot", "-o", dir.to_str().unwrap()])
+            .args(small),
+    );
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        !sim.exists(),
+        "a flight of an earlier plan stands beside the new one"
+    );
+    // for scripts: the JSON summary says where the flight is and what it measured
+    let (code, out, err) = common::run(
+        shoal()
+            .args([
+                "plan",
+                "--no-plot",
+                "--json",
+                "--fly",
+                "-o",
+                dir.to_str().unwrap(),
+            ])
+            .args(small),
+    );
+    assert_eq!(code, 0, "{out}{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(json["flight"]["sim"], sim.display().to_string());
+    assert!(
+        json["flight"]["metrics"]["samples_below_floor"].is_u64(),
+        "{out}"
+    );
+    assert!(json["files"].to_string().contains("sim.json"), "{out}");
+}

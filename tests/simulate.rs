@@ -71,6 +71,36 @@ fn regression_plans_within_the_checker_flew_into_the_floor() {
 }
 
 #[test]
+fn the_flight_is_judged_beside_what_the_plan_promised() {
+    let r = default_sim();
+    let m = &r.flight.metrics;
+    // a ping received was in range and in sight: linked through received pings is the rarer
+    assert!(m.linked_fraction <= m.connected_fraction);
+    assert!(m.planned_links_received <= m.planned_links_up);
+    // p(d) is at most the packet success rate
+    assert!(m.planned_links_expected <= r.navigation.packet_success);
+    // the closest approach over every sample is no farther than over the epochs' positions
+    let x = &r.flight.executed;
+    let mut epochs_min = f64::INFINITY;
+    for e in 0..r.times.len() {
+        for a in 0..x.len() {
+            for b in a + 1..x.len() {
+                let d = (0..3)
+                    .map(|i| (x[a][e][i] - x[b][e][i]).powi(2))
+                    .sum::<f64>();
+                epochs_min = epochs_min.min(d.sqrt());
+            }
+        }
+    }
+    assert!(m.min_separation_m <= epochs_min + 1e-9);
+    // the default plan keeps its clearance between its waypoints too, and is flown so
+    assert_eq!(m.planned_samples_below_floor, 0);
+    assert!(m.planned_min_altitude_m > 0.0);
+    let table = shoal::sim::summary::beside_plan(r);
+    assert!(table.contains("closest two AUVs"), "{table}");
+}
+
+#[test]
 fn the_same_seed_gives_the_same_simulation_byte_for_byte() {
     let (plan, floor) = default_plan();
     let again = simulate(plan, "plan.json", floor, 1).unwrap();
@@ -569,11 +599,15 @@ fn regression_simulate_refuses_a_plan_that_fails_its_check() {
 
 #[test]
 fn regression_an_estimator_that_does_not_converge_is_reported_for_its_policy() {
-    // with this current the factor graph of one policy did not converge, and simulate exited 2
-    // writing nothing
+    // with a current of [0.5, 0.2] one policy's factor graph once stopped at its iteration
+    // limit, and simulate exited 2 writing nothing; which policy's does depends on the flight,
+    // so here every factor graph is given a single iteration
     let (plan, floor) = default_plan();
-    let p = run::with_settings(plan, "plan.json", &["current.velocity=[0.5,0.2]".into()]).unwrap();
-    let r = simulate(&p, "plan.json", floor, 1).unwrap();
+    let options = shoal::sim::Options {
+        max_iterations: 1,
+        ..shoal::sim::Options::new(1, 1)
+    };
+    let r = shoal::sim::fly_plan(plan, "plan.json", floor, &options, &mut |_| {}).unwrap();
     assert!(!r.failed_estimates.is_empty(), "every estimator converged");
     let f = &r.failed_estimates[0];
     assert_eq!(f.estimator, "factor_graph");
@@ -656,6 +690,33 @@ fn regression_every_sim_json_simulate_writes_is_read_by_view() {
         html.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{out}{err}");
+}
+
+#[test]
+fn regression_simulate_in_a_strong_current_writes_its_record() {
+    // with this current one policy's factor graph stopped at its iteration limit and simulate
+    // exited 2 writing nothing; now a failed estimator is reported and the rest written
+    let (plan, _) = default_plan();
+    let (_dir, plan_path) = written_plan(plan);
+    let (code, out, err) = shoal_cli(&[
+        "simulate",
+        &plan_path,
+        "--no-plot",
+        "--set",
+        "current.velocity=[0.5,0.2]",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let sim = std::path::Path::new(&plan_path).with_file_name("sim.json");
+    let r: SimRecord = serde_json::from_slice(&std::fs::read(&sim).unwrap()).unwrap();
+    assert_eq!(r.current.velocity, [0.5, 0.2]);
+    // every estimate is there, made or reported as failed, and the table says which
+    assert_eq!(r.estimates.len() + r.failed_estimates.len(), 10);
+    for f in &r.failed_estimates {
+        assert!(out.contains(&format!("{}: ", f.policy.name())), "{out}");
+        assert!(err.contains("failed"), "{err}");
+    }
+    assert!(out.contains("wrote "), "{out}");
+    shoal::viewer::data::sim(&r, plan.scenario.team.auvs).unwrap();
 }
 
 #[test]

@@ -370,6 +370,15 @@ fn a_simulated_study_records_each_plans_localization() {
     assert!(num("sim_tracking_rms_m") < 5.0);
     assert!(num("sim_chain_end_m") < num("sim_dead_reckoning_end_m"));
     assert!(num("sim_all_links_end_m").is_finite());
+    // how the flown team kept its links and distances
+    for share in ["sim_planned_links_received", "sim_linked_fraction"] {
+        assert!((0.0..=1.0).contains(&num(share)), "{share}");
+    }
+    assert!(num("sim_min_separation_m") > 0.0);
+    let below_eps = recs[1][col("sim_below_clearance")]
+        .parse::<usize>()
+        .unwrap();
+    assert!(below_eps >= recs[1][col("sim_below_floor")].parse::<usize>().unwrap());
     // typed: the failed run's counts of the flight are nulls, not "NaN"
     let (columns, rows) = parquet_matches_csv(&sweep::table_path(&out));
     let at = |name: &str| columns.iter().position(|c| c.0 == name).unwrap();
@@ -378,6 +387,10 @@ fn a_simulated_study_records_each_plans_localization() {
         (Physical::INT64, false, true)
     );
     assert_eq!(rows[0][at("sim_below_floor")], Field::Null);
+    assert_eq!(
+        parquet_type(&columns, "sim_below_clearance"),
+        (Physical::INT64, false, true)
+    );
     assert_eq!(rows[1][at("sim_below_floor")], Field::Long(0));
     assert_eq!(rows[0][at("sim_status")], Field::Str("no plan".into()));
 }

@@ -298,6 +298,9 @@ fn each_kind_owns_only_its_names() {
     assert!(!Kind::Grid("floor.tif".into()).owns("floor.prj"));
     assert!(Kind::Plan.owns("auv12.csv") && !Kind::Plan.owns("auv.csv"));
     assert!(Kind::Plan.owns("figures/metrics.svg") && !Kind::Plan.owns("figures/x.svg"));
+    // shoal plan --fly: the plan's flight is part of its set
+    assert!(Kind::Plan.owns("sim.json") && Kind::Plan.owns("figures/sim-tracks.svg"));
+    assert!(!Kind::Plan.owns("other.json"));
     assert_eq!(sim.manifest(), None);
     assert_eq!(Kind::Plan.manifest(), Some(MANIFEST));
 }

@@ -2,7 +2,7 @@
 //! on its path, sampled at the navigation sensors' rate.
 
 use super::budget::Cost;
-use super::control::Controller;
+use super::control::{Controller, Trace};
 use super::current::CurrentField;
 use super::reference::Reference;
 use super::remus::{self, Remus100, RigidState};
@@ -71,8 +71,7 @@ pub fn fly(
     cost: &Cost,
     cancel: Option<&AtomicBool>,
 ) -> Result<Flight, Stopped> {
-    let (samples, substeps, sample_period) = (cost.samples, cost.substeps, cost.sample_period);
-    let h = sample_period / substeps as f64;
+    let (samples, sample_period) = (cost.samples, cost.sample_period);
     let times: Vec<f64> = (0..=samples).map(|i| i as f64 * sample_period).collect();
     let usv = times
         .iter()
@@ -84,40 +83,71 @@ pub fn fly(
     let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
     let mut auvs = Vec::with_capacity(reference.auvs());
     for n in 0..reference.auvs() {
-        let start = &plan.initial.auvs[n];
-        let mut s = initial_state(start.position, start.velocity, reference, n);
-        let mut ctl = Controller::new(model);
-        let mut out = Vec::with_capacity(times.len());
-        let mut thrust = 0.0;
-        for (i, &t) in times.iter().enumerate() {
-            if cancelled() {
-                return Err(Stopped::Cancelled);
-            }
-            out.push(sample(model, floor, current, &s, reference, n, t, thrust));
-            if i == samples {
-                break;
-            }
-            for j in 0..substeps {
-                let tj = t + j as f64 * h;
-                let p = remus::shoal_from_ned([s.eta[0], s.eta[1], s.eta[2]]);
-                let c = current.at(p);
-                let r = reference.auv(n, tj);
-                let a = ctl.command(model, &s, &r, c, h);
-                thrust = a.thrust;
-                s = model.step(&s, &a, remus::ned_from_shoal(c), h);
-            }
-            if !s.eta.iter().chain(&s.nu).all(|x| x.is_finite()) {
-                let last = out[out.len() - 1].position;
-                return Err(Stopped::Diverged {
-                    auv: n,
-                    time: t,
-                    current: current.at(last),
-                });
-            }
-        }
-        auvs.push(out);
+        auvs.push(fly_auv(
+            plan,
+            reference,
+            floor,
+            current,
+            model,
+            cost,
+            n,
+            &cancelled,
+            &mut |_, _, _| {},
+        )?);
     }
     Ok(Flight { times, auvs, usv })
+}
+
+/// One AUV's flight of [`fly`]; `watch` sees the time, the state and the controller's
+/// [`Trace`] at every RK4 step, before the step.
+#[allow(clippy::too_many_arguments)]
+pub fn fly_auv(
+    plan: &Plan,
+    reference: &Reference,
+    floor: &Seafloor,
+    current: &CurrentField,
+    model: &Remus100,
+    cost: &Cost,
+    n: usize,
+    cancelled: &dyn Fn() -> bool,
+    watch: &mut dyn FnMut(f64, &RigidState, &Trace),
+) -> Result<Vec<Sample>, Stopped> {
+    let (samples, substeps, sample_period) = (cost.samples, cost.substeps, cost.sample_period);
+    let h = sample_period / substeps as f64;
+    let start = &plan.initial.auvs[n];
+    let mut s = initial_state(start.position, start.velocity, reference, n);
+    let mut ctl = Controller::new(model);
+    let mut out = Vec::with_capacity(samples + 1);
+    let mut thrust = 0.0;
+    for i in 0..=samples {
+        let t = i as f64 * sample_period;
+        if cancelled() {
+            return Err(Stopped::Cancelled);
+        }
+        out.push(sample(model, floor, current, &s, reference, n, t, thrust));
+        if i == samples {
+            break;
+        }
+        for j in 0..substeps {
+            let tj = t + j as f64 * h;
+            let p = remus::shoal_from_ned([s.eta[0], s.eta[1], s.eta[2]]);
+            let c = current.at(p);
+            let r = reference.auv(n, tj);
+            let a = ctl.command(model, &s, &r, c, h);
+            watch(tj, &s, &ctl.trace());
+            thrust = a.thrust;
+            s = model.step(&s, &a, remus::ned_from_shoal(c), h);
+        }
+        if !s.eta.iter().chain(&s.nu).all(|x| x.is_finite()) {
+            let last = out[out.len() - 1].position;
+            return Err(Stopped::Diverged {
+                auv: n,
+                time: t,
+                current: current.at(last),
+            });
+        }
+    }
+    Ok(out)
 }
 
 /// Level flight at the planned start: surge at the planned horizontal speed, heading along the

@@ -10,6 +10,7 @@
 pub mod budget;
 pub mod control;
 pub mod current;
+pub mod envelope;
 pub mod estimate;
 pub mod flight;
 pub mod measure;

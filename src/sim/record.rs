@@ -163,6 +163,34 @@ pub struct FlightMetrics {
     pub planned_links_up: f64,
     /// Planned link-epochs whose ping was received, as a fraction.
     pub planned_links_received: f64,
+    /// Epochs at which every AUV reaches the USV through links whose pings were received
+    /// (on the executed positions, with the drawn packet losses), as a fraction.
+    #[serde(default)]
+    pub linked_fraction: f64,
+    /// Closest approach of two AUVs over the samples, flown, m (0 with one AUV).
+    #[serde(default)]
+    pub min_separation_m: f64,
+    /// Closest approach of two AUVs' references (the plan in time) at the same samples, m.
+    #[serde(default)]
+    pub min_separation_planned_m: f64,
+    /// The references' samples (all AUVs) below the floor clearance ε: what the plan itself
+    /// asks for, measured as the flight is.
+    #[serde(default)]
+    pub planned_samples_below_clearance: usize,
+    /// The references' samples (all AUVs) below the floor.
+    #[serde(default)]
+    pub planned_samples_below_floor: usize,
+    /// The references' lowest height above the floor, m.
+    #[serde(default)]
+    pub planned_min_altitude_m: f64,
+    /// The reception the plan expects of its links: the mean of p(d) over the planned
+    /// link-epochs at the planned positions (0 where out of range or out of sight).
+    #[serde(default)]
+    pub planned_links_expected: f64,
+    /// Epochs at which every AUV reaches the USV through links in range and in line of sight
+    /// at the planned positions, as a fraction.
+    #[serde(default)]
+    pub planned_connected_fraction: f64,
     /// Distance each AUV travelled, m.
     pub distance_m: Vec<f64>,
 }

@@ -182,16 +182,23 @@ pub struct Options<'a> {
     /// finished by then are returned, marked [`SimRecord::incomplete`]; with none finished,
     /// [`SimError::Interrupted`].
     pub cancel: Option<&'a AtomicBool>,
+    /// The factor graph's Levenberg–Marquardt iteration limit ([`FACTOR_GRAPH_ITERATIONS`]).
+    pub max_iterations: usize,
 }
 
+/// The factor graph's Levenberg–Marquardt iteration limit in `shoal simulate`.
+pub const FACTOR_GRAPH_ITERATIONS: usize = 200;
+
 impl Options<'_> {
-    /// `runs` runs from `seed`, the plan trusted, no cancel flag.
+    /// `runs` runs from `seed`, the plan trusted, no cancel flag, the factor graph's usual
+    /// iteration limit.
     pub fn new(seed: u64, runs: usize) -> Options<'static> {
         Options {
             seed,
             runs,
             gate: Gate::Trust,
             cancel: None,
+            max_iterations: FACTOR_GRAPH_ITERATIONS,
         }
     }
 }
@@ -450,7 +457,7 @@ pub fn fly_plan(
                 let ekf = estimate::filter(&whole).and_then(finite);
                 // from the filter's estimate, or from dead reckoning when the filter failed
                 let guess = ekf.as_ref().map_or(&[][..], |e| &e.position[..]);
-                let fg = smooth_mission(&whole, guess).and_then(finite);
+                let fg = smooth_mission(&whole, guess, options.max_iterations).and_then(finite);
                 match fg {
                     Ok(fg) => estimates.push(record_estimate(
                         policy,
@@ -545,12 +552,13 @@ fn flown_name(flown: Flown) -> &'static str {
 fn smooth_mission(
     whole: &estimate::Problem,
     guess: &[Vec<[f64; 3]>],
+    max_iterations: usize,
 ) -> Result<Estimate, EstimateError> {
     // a result one Gauss–Newton step could still improve by up to ½ in ½χ² (a step of one
     // posterior standard deviation in Mahalanobis length, spread over thousands of
     // coordinates) is kept: the estimators are judged on metres of error
     let options = estimate::SmoothOptions {
-        max_iterations: 200,
+        max_iterations,
         acceptance: 0.5,
         ..estimate::SmoothOptions::default()
     };
@@ -665,7 +673,7 @@ fn record_estimate(
 
 fn flight_metrics(
     plan: &Plan,
-    _floor: &Seafloor,
+    floor: &Seafloor,
     flight: &Flight,
     m: &Measurements,
     planned: &dyn Fn(usize) -> Vec<(usize, usize)>,
@@ -674,6 +682,8 @@ fn flight_metrics(
     let eps = plan.scenario.auv.floor_clearance;
     let mut min_alt = f64::INFINITY;
     let (mut below_eps, mut below_floor, mut off) = (0, 0, 0);
+    let mut planned_min_alt = f64::INFINITY;
+    let (mut planned_below_eps, mut planned_below_floor) = (0, 0);
     let mut rms = vec![0.0; n];
     let mut mx = vec![0.0_f64; n];
     let mut travelled = vec![0.0; n];
@@ -690,15 +700,35 @@ fn flight_metrics(
                 }
                 None => off += 1,
             }
+            if let Ok(z) = floor.elevation(s.reference[0], s.reference[1]) {
+                let a = s.reference[2] - z;
+                planned_min_alt = planned_min_alt.min(a);
+                planned_below_eps += usize::from(a < eps);
+                planned_below_floor += usize::from(a < 0.0);
+            }
         }
         travelled[v] = samples
             .windows(2)
             .map(|w| dist(w[0].position, w[1].position))
             .sum();
     }
-    // connectivity on the executed geometry: links in range and in line of sight
+    // closest approach of two AUVs, flown and planned, over the samples
+    let (mut sep, mut sep_planned) = (f64::INFINITY, f64::INFINITY);
+    for i in 0..flight.times.len() {
+        for a in 0..n {
+            for b in a + 1..n {
+                let (x, y) = (&flight.auvs[a][i], &flight.auvs[b][i]);
+                sep = sep.min(dist(x.position, y.position));
+                sep_planned = sep_planned.min(dist(x.reference, y.reference));
+            }
+        }
+    }
+    let finite_or_zero = |x: f64| if x.is_finite() { x } else { 0.0 };
+    // connectivity on the executed geometry: links in range and in line of sight, and links
+    // whose pings were received
     let per_epoch = (n + 1) * n / 2;
-    let (mut connected, mut planned_total, mut planned_up, mut planned_rx) = (0, 0, 0, 0);
+    let (mut connected, mut linked) = (0, 0);
+    let (mut planned_total, mut planned_up, mut planned_rx) = (0, 0, 0);
     for e in 0..m.epochs {
         let pings = &m.pings[e * per_epoch..(e + 1) * per_epoch];
         let up = |a: usize, b: usize| {
@@ -707,19 +737,8 @@ fn flight_metrics(
                 .find(|p| p.a == a.min(b) && p.b == a.max(b))
                 .filter(|p| p.line_of_sight)
         };
-        // breadth-first from the USV (index n)
-        let mut seen = vec![false; n + 1];
-        let mut queue = vec![n];
-        seen[n] = true;
-        while let Some(x) = queue.pop() {
-            for y in 0..=n {
-                if !seen[y] && y != x && up(x, y).is_some() {
-                    seen[y] = true;
-                    queue.push(y);
-                }
-            }
-        }
-        connected += usize::from(seen.iter().all(|&s| s));
+        connected += usize::from(reaches_usv(n, &|a, b| up(a, b).is_some()));
+        linked += usize::from(reaches_usv(n, &|a, b| up(a, b).is_some_and(|p| p.received)));
         for (a, b) in planned(e) {
             planned_total += 1;
             if let Some(p) = up(a, b) {
@@ -728,6 +747,7 @@ fn flight_metrics(
             }
         }
     }
+    let (planned_expected, planned_connected) = planned_links(plan, floor, flight, m, planned);
     let frac = |x: usize, of: usize| if of > 0 { x as f64 / of as f64 } else { 0.0 };
     FlightMetrics {
         tracking_rms_m: rms.iter().map(|x| x.sqrt()).collect(),
@@ -739,8 +759,76 @@ fn flight_metrics(
         connected_fraction: frac(connected, m.epochs),
         planned_links_up: frac(planned_up, planned_total),
         planned_links_received: frac(planned_rx, planned_total),
+        linked_fraction: frac(linked, m.epochs),
+        min_separation_m: finite_or_zero(sep),
+        min_separation_planned_m: finite_or_zero(sep_planned),
+        planned_samples_below_clearance: planned_below_eps,
+        planned_samples_below_floor: planned_below_floor,
+        planned_min_altitude_m: finite_or_zero(planned_min_alt),
+        planned_links_expected: planned_expected,
+        planned_connected_fraction: planned_connected,
         distance_m: travelled,
     }
+}
+
+/// What the plan itself promises of its links, on the planned positions at each acoustic
+/// epoch (the references, and the USV, which flies its plan): the mean reception p(d) of the
+/// planned link-epochs (0 out of range or out of sight), and the share of epochs at which every
+/// AUV reaches the USV through links in range and in sight.
+fn planned_links(
+    plan: &Plan,
+    floor: &Seafloor,
+    flight: &Flight,
+    m: &Measurements,
+    planned: &dyn Fn(usize) -> Vec<(usize, usize)>,
+) -> (f64, f64) {
+    let s = &plan.scenario;
+    let (nav, range, resolution) = (&s.navigation, s.acoustic.sonar_range, s.acoustic.resolution);
+    let n = flight.auvs.len();
+    let per = flight.times.len().saturating_sub(1) / (m.epochs - 1).max(1);
+    let (mut expected, mut links, mut connected) = (0.0, 0usize, 0usize);
+    for e in 0..m.epochs {
+        let at = |v: usize| {
+            if v == n {
+                flight.usv[e * per]
+            } else {
+                flight.auvs[v][e * per].reference
+            }
+        };
+        let reception = |a: usize, b: usize| {
+            let (pa, pb) = (at(a), at(b));
+            let d = dist(pa, pb);
+            let sight = d < range
+                && floor
+                    .segment_clearance(pa, pb, resolution)
+                    .is_ok_and(|c| c.min_clearance >= 0.0);
+            sight.then(|| nav.packet_success * (1.0 - (d / range).powf(nav.range_falloff)))
+        };
+        for (a, b) in planned(e) {
+            links += 1;
+            expected += reception(a, b).unwrap_or(0.0);
+        }
+        connected += usize::from(reaches_usv(n, &|a, b| reception(a, b).is_some()));
+    }
+    let frac = |x: f64, of: usize| if of > 0 { x / of as f64 } else { 0.0 };
+    (frac(expected, links), frac(connected as f64, m.epochs))
+}
+
+/// Whether every one of `n` AUVs reaches the USV (vehicle `n`) through pairs `linked` joins
+/// (breadth-first from the USV).
+fn reaches_usv(n: usize, linked: &dyn Fn(usize, usize) -> bool) -> bool {
+    let mut seen = vec![false; n + 1];
+    let mut queue = vec![n];
+    seen[n] = true;
+    while let Some(x) = queue.pop() {
+        for y in 0..=n {
+            if !seen[y] && y != x && linked(x, y) {
+                seen[y] = true;
+                queue.push(y);
+            }
+        }
+    }
+    seen.iter().all(|&s| s)
 }
 
 fn flight_record(flight: &Flight, m: &Measurements, metrics: FlightMetrics) -> FlightRecord {

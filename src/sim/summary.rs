@@ -15,13 +15,17 @@ fn flight_line(out: &mut String, name: &str, f: &FlightRecord, eps: f64) {
     let _ = writeln!(
         out,
         "{name}: tracking RMS {lo:.1}–{hi:.1} m (max {mx:.1} m); lowest altitude {:.1} m ({} \
-         samples below ε = {eps} m, {} below the floor, {} off the grid); every AUV linked to \
-         the USV at {:.0} % of epochs{}",
+         samples below ε = {eps} m, {} below the floor, {} off the grid); closest two AUVs \
+         {:.1} m (planned {:.1} m); every AUV linked to the USV at {:.0} % of epochs (in \
+         range and sight), through received pings at {:.0} %{}",
         m.min_altitude_m,
         m.samples_below_clearance,
         m.samples_below_floor,
         m.samples_off_grid,
+        m.min_separation_m,
+        m.min_separation_planned_m,
         100.0 * m.connected_fraction,
+        100.0 * m.linked_fraction,
         if m.planned_links_up > 0.0 {
             format!(
                 "; planned links in range and sight {:.0} %, received {:.0} %",
@@ -169,5 +173,84 @@ pub fn table(r: &SimRecord) -> String {
             }
         }
     }
+    out
+}
+
+/// The flown figures beside the planned ones (`shoal plan --fly`): what the plan promised, on
+/// its own positions in time, and what its flight gave. Planned: the references' samples below
+/// the floor and below ε, the closest two references, the mean p(d) of the planned links, and
+/// the share of epochs with every AUV in range and sight of the USV through links; a tracking
+/// error and an estimate have no planned value.
+pub fn beside_plan(r: &SimRecord) -> String {
+    let m = &r.flight.metrics;
+    let worst = m.tracking_rms_m.iter().copied().fold(0.0, f64::max);
+    let chain = r
+        .estimates
+        .iter()
+        .find(|e| {
+            e.flown == "final"
+                && e.policy == super::policy::Policy::Chain
+                && e.estimator == "factor_graph"
+        })
+        .and_then(|e| e.metrics.window_end_rmse_m.last())
+        .map_or("-".to_string(), |x| format!("{x:.1}"));
+    let pct = |x: f64| format!("{:.0} %", 100.0 * x);
+    let rows: [(String, String, String); 8] = [
+        (
+            "samples below the floor".into(),
+            m.planned_samples_below_floor.to_string(),
+            m.samples_below_floor.to_string(),
+        ),
+        (
+            format!("samples below ε = {} m", r.floor_clearance),
+            m.planned_samples_below_clearance.to_string(),
+            m.samples_below_clearance.to_string(),
+        ),
+        (
+            "lowest altitude, m".into(),
+            format!("{:.1}", m.planned_min_altitude_m),
+            format!("{:.1}", m.min_altitude_m),
+        ),
+        (
+            "tracking RMS, worst AUV, m".into(),
+            "-".into(),
+            format!("{worst:.1}"),
+        ),
+        (
+            "closest two AUVs, m".into(),
+            format!("{:.1}", m.min_separation_planned_m),
+            format!("{:.1}", m.min_separation_m),
+        ),
+        (
+            "planned-link pings received".into(),
+            pct(m.planned_links_expected),
+            pct(m.planned_links_received),
+        ),
+        (
+            "epochs every AUV linked to the USV".into(),
+            pct(m.planned_connected_fraction),
+            pct(m.linked_fraction),
+        ),
+        (
+            "chain error at the last window's end, m".into(),
+            "-".into(),
+            chain,
+        ),
+    ];
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "{:<40} {:>9} {:>9}",
+        "flown beside planned", "planned", "flown"
+    );
+    for (name, planned, flown) in rows {
+        let _ = writeln!(out, "{name:<40} {planned:>9} {flown:>9}");
+    }
+    let _ = writeln!(
+        out,
+        "(planned: the plan's own positions in time, sampled as the flight is; pings: the mean \
+         p(d) of its links; linked: in range and sight. Flown: the pings received, and links \
+         whose pings were received)"
+    );
     out
 }

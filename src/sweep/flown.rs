@@ -10,23 +10,31 @@ use crate::sim::policy::Policy;
 use crate::sim::record::SimRecord;
 
 /// The columns a simulated run adds, after the row's.
-pub const COLUMNS: [&str; 6] = [
+pub const COLUMNS: [&str; 10] = [
     "sim_status",
     "sim_tracking_rms_m",
     "sim_below_floor",
     "sim_dead_reckoning_end_m",
     "sim_chain_end_m",
     "sim_all_links_end_m",
+    "sim_planned_links_received",
+    "sim_linked_fraction",
+    "sim_min_separation_m",
+    "sim_below_clearance",
 ];
 
 /// The type of each of [`COLUMNS`].
-pub const KINDS: [Kind; 6] = [
+pub const KINDS: [Kind; 10] = [
     Kind::Text,
     Kind::Real,
     Kind::Int,
     Kind::Real,
     Kind::Real,
     Kind::Real,
+    Kind::Real,
+    Kind::Real,
+    Kind::Real,
+    Kind::Int,
 ];
 
 /// The simulation's fields of a run: its plan flown over its floor, or why not ("no plan",
@@ -63,5 +71,9 @@ fn measured(r: &SimRecord) -> Vec<String> {
         end(Policy::DeadReckoning).to_string(),
         end(Policy::Chain).to_string(),
         end(Policy::AllLinks).to_string(),
+        m.planned_links_received.to_string(),
+        m.linked_fraction.to_string(),
+        m.min_separation_m.to_string(),
+        m.samples_below_clearance.to_string(),
     ]
 }

@@ -60,6 +60,15 @@ pub(super) fn describe(name: &str) -> (String, String) {
         "sim_all_links_end_m" => Some(("end error, all links (flown)", "m")),
         "sim_tracking_rms_m" => Some(("worst tracking RMS (flown)", "m")),
         "sim_below_floor" => Some(("flight samples under the floor", "samples")),
+        "sim_below_clearance" => Some(("flight samples below the floor clearance", "samples")),
+        "sim_planned_links_received" => {
+            Some(("planned pings received (flown)", "fraction of pings"))
+        }
+        "sim_linked_fraction" => Some((
+            "epochs every AUV reaches the USV by received pings",
+            "fraction of epochs",
+        )),
+        "sim_min_separation_m" => Some(("closest two AUVs (flown)", "m")),
         _ => None,
     };
     let (what, unit) = known.unwrap_or_else(|| ("", unit_of(name)));
