@@ -166,6 +166,7 @@ pub(super) fn run(
     families.extend(c.ranges());
     families.extend(c.floor());
     families.push(c.heading_rate());
+    families.push(c.separation());
     families.extend(c.recorded());
     families.push(c.chain());
     families.push(c.metrics());
