@@ -200,9 +200,10 @@ fn position_problem(floor: &Seafloor, x: f64, y: f64) -> Option<String> {
 
 /// Algorithm 1, line 5: USV at the origin (or at `initial.usv` when `[initial]` lists no AUV);
 /// AUVs at seeded random points in the half ball of radius d_s below it, at least
-/// surface_clearance below the surface, within the depth rating (`auv.max_depth`) and ε above the floor's keep-out field `keep_out`
-/// (`Seafloor::keep_out`: the floor itself away from obstacles), at rest. Or the explicit
-/// `[initial]` of the scenario.
+/// surface_clearance below the surface, within the depth rating (`auv.max_depth`), ε above the
+/// floor's keep-out field `keep_out` (`Seafloor::keep_out`: the floor itself away from
+/// obstacles) and `auv.min_separation` from every AUV drawn before (`team::separation`), at
+/// rest. Or the explicit `[initial]` of the scenario.
 pub fn initial_state(
     s: &Scenario,
     floor: &Seafloor,
@@ -256,6 +257,14 @@ pub fn initial_state(
             if !floor.contains(p[0], p[1]) || floor.is_obstacle(p[0], p[1])? {
                 continue;
             }
+            let crowded = auvs.iter().any(|a: &AuvState| {
+                let q = a.position;
+                let d2: f64 = (0..3).map(|c| (p[c] - q[c]).powi(2)).sum();
+                d2 < s.auv.min_separation.powi(2)
+            });
+            if crowded {
+                continue;
+            }
             if p[2] >= keep_out.elevation(p[0], p[1])? + s.auv.floor_clearance {
                 found = Some(p);
                 break;
@@ -265,9 +274,10 @@ pub fn initial_state(
             let z0 = floor.elevation(usv[0], usv[1]).unwrap_or(f64::NAN);
             return Err(PlanError::NoInitialPosition(format!(
                 "no point for AUV {n} in {TRIES} draws within d_s = {ds} m of the USV, at least \
-                 {} m below the surface, at most {} m deep and {} m above the floor (floor under \
-                 the USV: z = {z0:.1} m)",
-                s.auv.surface_clearance, s.auv.max_depth, s.auv.floor_clearance
+                 {} m below the surface, at most {} m deep, {} m above the floor and {} m from \
+                 the AUVs drawn before (floor under the USV: z = {z0:.1} m)",
+                s.auv.surface_clearance, s.auv.max_depth, s.auv.floor_clearance,
+                s.auv.min_separation
             )));
         };
         auvs.push(AuvState {

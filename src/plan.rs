@@ -244,13 +244,14 @@ pub struct Link {
     pub b: Option<usize>,
 }
 
-/// The band [lo, hi] (metres) a link's length is kept in: C5_2/C5_3's [d_s − d_t, d_s], with hi
-/// lowered for a link that lost line of sight (Algorithm 1, line 20).
+/// The band [lo, hi] (metres) a link's length is kept in: C5_2/C5_3's [d_s − d_t, d_s] with its
+/// top at ρ·d_s (`acoustic.link_margin`; ρ = 1 is the paper's band), hi lowered for a link that
+/// lost line of sight (Algorithm 1, line 20).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Band {
-    /// Lower end, metres: d_s − d_t (lowered to `hi` if `hi` falls below it).
+    /// Lower end, metres: ρ·d_s − d_t (lowered to `hi` if `hi` falls below it).
     pub lo: f64,
-    /// Upper end, metres: d_s, less `acoustic.los_shrink` per line-of-sight round in which the
+    /// Upper end, metres: ρ·d_s, less `acoustic.los_shrink` per line-of-sight round in which the
     /// link was blocked (not below 0).
     pub hi: f64,
 }

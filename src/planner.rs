@@ -358,7 +358,9 @@ fn run(
         });
         // Step 3 (P5) and line of sight, lines 17–22
         let clock = Instant::now();
-        let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
+        // the band tops at ρ·d_s (`acoustic.link_margin`): links planned to be heard
+        let top = s.acoustic.link_margin * s.acoustic.sonar_range;
+        let links = LinkSet::from_graph(&graph, top, s.acoustic.band_tolerance);
         let p5 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone())
             .with_links(links)
             .with_lanes(&out1.iterate);

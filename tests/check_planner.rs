@@ -735,3 +735,43 @@ fn step1_runs_to_its_own_tolerance_and_limit_and_the_check_reads_them() {
     let r = check_plan(&tampered, &f);
     assert!(!r.passed(), "\n{}", r.table());
 }
+
+/// Regression: the default scenario at N = 5, seed 15, ended its window with AUVs 0 and 4
+/// 2.4 mm apart: C1_6 gathers the team within d_s of the USV at k = K, and nothing kept two
+/// AUVs apart. Now every pair keeps `auv.min_separation` at every waypoint and along every
+/// segment of both stages (measured here by sampling each segment finely), and the plan passes
+/// its check.
+#[test]
+fn rendezvous_does_not_stack_auvs() {
+    let mut s = Scenario::default();
+    s.team.auvs = 5;
+    s.seed = 15;
+    let p = plans_and_passes(&s);
+    let d = s.auv.min_separation;
+    assert!(d >= 10.0, "the default separation is 10 m");
+    let mut least = f64::INFINITY;
+    for win in &p.windows {
+        for st in [&win.step1, &win.final_] {
+            for i in 0..st.auvs.len() {
+                for j in i + 1..st.auvs.len() {
+                    let (a, b) = (&st.auvs[i].position, &st.auvs[j].position);
+                    for k in 1..a.len() {
+                        for m in 0..=200 {
+                            let t = m as f64 / 200.0;
+                            let gap: f64 = (0..3)
+                                .map(|c| {
+                                    let pa = a[k - 1][c] + t * (a[k][c] - a[k - 1][c]);
+                                    let pb = b[k - 1][c] + t * (b[k][c] - b[k - 1][c]);
+                                    (pa - pb).powi(2)
+                                })
+                                .sum::<f64>()
+                                .sqrt();
+                            least = least.min(gap);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(least >= d - 1e-3, "two AUVs come within {least} m");
+}

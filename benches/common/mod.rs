@@ -88,7 +88,8 @@ pub fn step3<'b>(b: &'b Setup, p2: &mut TeamProblem) -> (Trajectory, TeamProblem
         s.acoustic.sonar_range,
         s.acoustic.graph,
     );
-    let links = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
+    let top = s.acoustic.link_margin * s.acoustic.sonar_range;
+    let links = LinkSet::from_graph(&graph, top, s.acoustic.band_tolerance);
     let p5 = b.problem().with_links(links).with_lanes(&step1);
     let radius = s.acoustic.band_tolerance.min(s.scp.trust_region);
     (step1, p5, radius)

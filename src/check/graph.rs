@@ -236,7 +236,7 @@ impl Checker<'_> {
     pub(super) fn graph_families(&self) -> Vec<FamilyResult> {
         let mut fh = Family::new("A2A Hamiltonian path", "problems", 0.0);
         let mut fa = Family::new("A2U link", "m", A2U_TIE_TOL);
-        let mut fb = Family::new("link bands within [0, d_s]", "m", BAND_LIMIT_TOL);
+        let mut fb = Family::new("link bands within [0, ρ·d_s]", "m", BAND_LIMIT_TOL);
         let mut fl = Family::new("links in band", "m", BAND_TOL);
         let mut fc = Family::new(
             "acoustic connectivity (range + line of sight)",
@@ -372,16 +372,17 @@ impl Checker<'_> {
     }
 
     // ------------------------------------------------------------------------------------
-    // C5_2/C5_3 bands: 0 ≤ lo ≤ hi ≤ d_s
+    // C5_2/C5_3 bands: 0 ≤ lo ≤ hi ≤ ρ·d_s, ρ the margin the plan claims (link_margin)
     // ------------------------------------------------------------------------------------
     fn bands(&self, f: &mut Family, w: usize, win: &Window) {
-        let d_s = self.limits.acoustic.sonar_range;
+        let rho = self.s.acoustic.link_margin;
+        let top = rho * self.limits.acoustic.sonar_range;
         let l = &win.links;
         for (k, (bands, links)) in l.bands.iter().zip(&l.links).enumerate() {
             for (b, link) in bands.iter().zip(links) {
-                let margin = b.lo.min(b.hi - b.lo).min(d_s - b.hi);
+                let margin = b.lo.min(b.hi - b.lo).min(top - b.hi);
                 // f64::min drops a NaN: test it separately
-                let margin = if b.lo.is_nan() || b.hi.is_nan() {
+                let margin = if b.lo.is_nan() || b.hi.is_nan() || !(rho > 0.0 && rho <= 1.0) {
                     f64::NAN
                 } else {
                     margin
@@ -391,7 +392,7 @@ impl Checker<'_> {
                         w,
                         k,
                         &format!(
-                            "{}: band [{}, {}], d_s = {d_s}",
+                            "{}: band [{}, {}], ρ·d_s = {top} (link_margin ρ = {rho})",
                             link_name(link),
                             b.lo,
                             b.hi

@@ -39,6 +39,13 @@
 //! sample over an obstacle cell or off the grid has margin −1, tolerance 0. The family **inside
 //! the seafloor grid** holds the AUVs' and the USV's waypoints.
 //!
+//! # AUV separation
+//!
+//! The family **AUV separation** (module `separation`) holds every pair of AUVs at least
+//! `auv.min_separation` apart at every waypoint and along every segment between waypoints (the
+//! least distance of two points moving on straight lines over the same interval, in closed
+//! form), in both stages, k = 0..=K.
+//!
 //! # Steps 2 and 3 (the graph families)
 //!
 //! At every step k = 0..=K of every window (module `graph`):
@@ -48,8 +55,9 @@
 //!   link of `graph.a2u[k]` followed by exactly those edges. Counted in problems, tolerance 0.
 //! * **A2U link**: `graph.a2u[k]` is an AUV nearest the USV (at z = 0) in Step 1's positions
 //!   (P3); margin = nearest distance − its distance, tolerance [`A2U_TIE_TOL`].
-//! * **link bands within [0, d_s]**: every recorded band has 0 ≤ lo ≤ hi ≤ d_s, tolerance
-//!   [`BAND_LIMIT_TOL`].
+//! * **link bands within [0, ρ·d_s]**: every recorded band has 0 ≤ lo ≤ hi ≤ ρ·d_s, ρ the
+//!   plan's `acoustic.link_margin` (the margin the plan claims its links keep inside d_s),
+//!   tolerance [`BAND_LIMIT_TOL`].
 //! * **links in band**: for k = 1..=K (k = 0 is the fixed start) every planned link's length in
 //!   the final positions is in its band within [`BAND_TOL`], or the (k, link) is listed in
 //!   `out_of_band`; every `out_of_band` entry names a planned link with its length (within
@@ -89,7 +97,8 @@
 //! | recorded explored area (`metrics`) | `AREA_TOL` = 5 % relative | measured across the planner's strips |
 //! | A2A Hamiltonian path | 0 problems | combinatorial facts |
 //! | A2U link | [`A2U_TIE_TOL`] = 1e-9 m | ties between equally near AUVs |
-//! | link bands within [0, d_s] | [`BAND_LIMIT_TOL`] = 1e-9 m | recorded numbers |
+//! | link bands within [0, ρ·d_s] | [`BAND_LIMIT_TOL`] = 1e-9 m | recorded numbers |
+//! | AUV separation | [`SEPARATION_TOL`] = 1e-3 m | nonconvex (SCP) |
 //! | links in band | [`BAND_TOL`] = 1e-3 m | nonconvex (SCP), as the planner's 1 mm report threshold |
 //! | acoustic connectivity | 0 AUVs cut off; range [`LENGTH_TOL`], line of sight [`LOS_TOL`] | the hard requirement |
 //! | planned chain line of sight | [`LOS_TOL`] = 1e-6 m | |
@@ -102,6 +111,7 @@ pub mod model;
 mod objective;
 mod obstacles;
 mod run;
+mod separation;
 mod vehicles;
 
 use crate::plan::{ObjectiveTerms, Plan};
@@ -170,6 +180,10 @@ pub const OUT_OF_BAND_REL_TOL: f64 = 1e-6;
 /// Line of sight: a sample of 𝓛_r may be below the floor by at most this, metres (rounding in
 /// the bilinear floor; a link touching the floor has line of sight).
 pub const LOS_TOL: f64 = 1e-6;
+/// AUV separation: two AUVs may come closer than `auv.min_separation` by at most this, metres.
+/// The separation is nonconvex, solved by SCP to scp.feasibility_tol (1e-3 by default), as the
+/// floor clearance is: the same number.
+pub const SEPARATION_TOL: f64 = 1e-3;
 
 /// Indent of the line(s) under a family's row that say where its worst margin is.
 pub const WHERE_INDENT: &str = "    at ";
@@ -670,6 +684,12 @@ pub const LIMITS: &[Limit] = &[
         set: |s, v| s.auv.surface_clearance = v,
     },
     Limit {
+        key: "auv.min_separation",
+        families: "AUV separation",
+        value: |s| s.auv.min_separation,
+        set: |s, v| s.auv.min_separation = v,
+    },
+    Limit {
         key: "usv.max_speed",
         families: "USV speed",
         value: |s| s.usv.max_speed,
@@ -677,7 +697,7 @@ pub const LIMITS: &[Limit] = &[
     },
     Limit {
         key: "acoustic.sonar_range",
-        families: "C1_6 sonar range, link bands, acoustic connectivity",
+        families: "C1_6 sonar range, link bands (with the plan's ρ), acoustic connectivity",
         value: |s| s.acoustic.sonar_range,
         set: |s, v| s.acoustic.sonar_range = v,
     },

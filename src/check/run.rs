@@ -167,6 +167,7 @@ pub(super) fn run(
     families.extend(c.floor());
     families.push(c.heading_rate());
     families.extend(c.envelope());
+    families.push(c.separation());
     families.extend(c.recorded());
     families.push(c.chain());
     families.push(c.metrics());

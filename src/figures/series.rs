@@ -80,10 +80,12 @@ impl<'a> Series<'a> {
 }
 
 /// Every planned link's length in the final plan (A2U: to the USV at the surface) against the
-/// band [d_s − d_t, d_s]; lowered band tops and links outside their band marked.
+/// band [ρ·d_s − d_t, ρ·d_s] (ρ = 1: the paper's); lowered band tops and links outside their
+/// band marked.
 pub(crate) fn links<'a>(scene: &'a Scene<'a>) -> Series<'a> {
     let a = &scene.plan.scenario.acoustic;
-    let (lo, hi) = (a.sonar_range - a.band_tolerance, a.sonar_range);
+    let top = a.link_margin * a.sonar_range;
+    let (lo, hi) = (top - a.band_tolerance, top);
     // The A2U link (whichever AUV holds it) as one line; the A2A links as dots.
     let (mut a2u, mut a2a) = (Vec::new(), Vec::new());
     let (mut ticks, mut rings) = (Vec::new(), Vec::new());

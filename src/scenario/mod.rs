@@ -101,6 +101,10 @@ pub struct Acoustic {
     pub max_range: f64,
     /// r, resolution of the segment / line-of-sight sampling 𝓛_r, metres.
     pub resolution: f64,
+    /// ρ, the link margin: P5 keeps each planned link in the band [ρ·d_s − d_t, ρ·d_s], its top
+    /// a fraction ρ of the sonar range (ours; the paper's band tops at d_s, ρ = 1). A modem
+    /// hears fewer pings the nearer a link is to d_s (docs/simulation.md); 0 < ρ ≤ 1.
+    pub link_margin: f64,
     /// How much a link's upper band bound is lowered each time it loses line of sight
     /// (Algorithm 1, line 20: d_s,ij = d_s − ε), metres.
     pub los_shrink: f64,
@@ -161,6 +165,9 @@ pub struct Auv {
     pub floor_clearance: f64,
     /// C1_4: AUVs stay at least this far below the surface (z ≤ −surface_clearance), metres.
     pub surface_clearance: f64,
+    /// Least distance between any two AUVs, at every step k ≥ 1 and along the segments between
+    /// steps, metres (ours; the paper has none: `team::separation`). 0 turns it off.
+    pub min_separation: f64,
     /// Width of the seafloor swath each AUV's sensor covers (side-scan / multibeam), metres;
     /// used for the explored-area metric only.
     pub swath_width: f64,
@@ -320,6 +327,10 @@ pub enum W8Scaling {
 
 /// K₀, the steps of the paper's window (Section V), for `weights.w8_scaling = "energy"`.
 pub const REFERENCE_STEPS: f64 = 20.0;
+
+/// The default ρ of `acoustic.link_margin` (docs/simulation.md, "Links planned to be heard",
+/// has the flown study that chose it).
+pub const LINK_MARGIN: f64 = 0.8;
 /// δ₀, the paper's sampling time in seconds (Section V), for `weights.w8_scaling = "energy"`.
 pub const REFERENCE_DT: f64 = 100.0;
 
@@ -483,6 +494,7 @@ impl Default for Acoustic {
             band_tolerance: 30.0, // paper gives no d_t; 20 % of d_s
             max_range: 400.0, // paper gives no d_max; a few hundred metres (mid-frequency modems)
             resolution: 5.0,  // 𝓛_r: 5 m, a fifth of the synthetic grid cell
+            link_margin: LINK_MARGIN,
             los_shrink: 15.0, // ours: half of d_t per round
             los_rounds: 5,
             // ours: one chain per window in lane order (docs/method.md, "Step 2")
@@ -515,7 +527,10 @@ impl Default for Auv {
             min_speed: 1.2,
             floor_clearance: 5.0, // ε; REMUS survey altitude is typically 3–10 m
             surface_clearance: 2.0, // stay 2 m below the surface (C1_4)
-            swath_width: 50.0,    // ours: a side-scan swath of ~10× a 5 m altitude
+            // MOOS-IvP's BHV_AvoidCollision: min_util_cpa_dist = 10 m by default, the closest
+            // point of approach at or inside which a manoeuvre has the least utility
+            min_separation: 10.0,
+            swath_width: 50.0, // ours: a side-scan swath of ~10× a 5 m altitude
             // ours: that swath at ε = 5 m means a slant range of √(25² + 5²) = 25.5 m, which
             // still covers 2·√(25.5² − 15²) = 41 m (82 %) of ground from 15 m up
             survey_altitude: 15.0,

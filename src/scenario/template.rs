@@ -43,6 +43,13 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "d_t: tolerance of the link-length band [d_s − d_t, d_s] of C5_2 / C5_3, metres \
              (ours: the paper gives no value; 20 % of d_s). 0 < d_t < d_s."
         }
+        "acoustic.link_margin" => {
+            "ρ: P5 keeps each planned link in the band [ρ·d_s − d_t, ρ·d_s] (ours; the paper's \
+             band tops at d_s, ρ = 1). A modem hears a ping at distance d with probability \
+             about 0.9·(1 − (d/d_s)⁶): 0.66 at 0.8·d_s, 0.42 at 0.9·d_s, none at d_s; links \
+             planned at d_s are barely heard when flown (docs/simulation.md). d_t < ρ·d_s, \
+             ρ ≤ 1."
+        }
         "acoustic.max_range" => {
             "d_max: largest AUV–USV distance at any step (C1_5), metres (ours: the paper gives \
              no value). Must be ≥ d_s."
@@ -98,6 +105,12 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         }
         "auv.floor_clearance" => {
             "ε of C2_2: clearance kept above the seafloor, z ≥ Z(x, y) + ε, metres. ≥ 0."
+        }
+        "auv.min_separation" => {
+            "Least distance kept between any two AUVs, at every step k ≥ 1 and along the \
+             segments between steps, metres (ours; the paper has none). The default is the \
+             worst case of MOOS-IvP's collision avoidance (BHV_AvoidCollision's \
+             min_util_cpa_dist = 10 m). 0 turns it off. ≥ 0, below d_s."
         }
         "auv.swath_width" => {
             "Width of the seafloor swath one AUV's sensor covers, metres (ours; for the \

@@ -239,6 +239,21 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         &["acoustic.sonar_range"],
     );
     c.float_rel(
+        "acoustic.link_margin",
+        a.link_margin,
+        a.link_margin > 0.0
+            && a.link_margin <= 1.0
+            && a.link_margin * a.sonar_range > a.band_tolerance,
+        format!(
+            "must be a fraction ρ ≤ 1 with ρ·d_s > d_t (the band [ρ·d_s − d_t, ρ·d_s] of every \
+             planned link), here d_s = acoustic.sonar_range = {} and d_t = \
+             acoustic.band_tolerance = {}",
+            num(a.sonar_range),
+            num(a.band_tolerance)
+        ),
+        &["acoustic.sonar_range", "acoustic.band_tolerance"],
+    );
+    c.float_rel(
         "acoustic.max_range",
         a.max_range,
         a.max_range >= a.sonar_range,
@@ -327,6 +342,17 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         "auv.surface_clearance",
         v.surface_clearance,
         "metres (C1_4)",
+    );
+    c.float_rel(
+        "auv.min_separation",
+        v.min_separation,
+        v.min_separation >= 0.0 && v.min_separation < s.acoustic.sonar_range,
+        format!(
+            "must be a number of metres with 0 ≤ value < d_s = acoustic.sonar_range = {} \
+             (the least distance between two AUVs; 0 turns it off)",
+            num(s.acoustic.sonar_range)
+        ),
+        &["acoustic.sonar_range"],
     );
     c.positive(
         "auv.swath_width",

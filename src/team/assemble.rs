@@ -1,7 +1,9 @@
 //! The convex model of the window problem about a reference trajectory, as Clarabel data: the
 //! one place that puts the constraint families together, in cone order. The sequence of
 //! (row, column) entries never depends on values, so the pattern built at the first iteration
-//! serves every later one (only values change).
+//! serves every later one (only values change), except the separation rows' (`separation`):
+//! their set of pairs grows when a reference brings more pairs near, and the solver is then
+//! built again.
 //!
 //! - objective: OF2's model (`objective`), the slacks' prices (`floor`, `heading`, `keep_out`,
 //!   `links`), the linearised OF1_5 (`spread`) and the lanes term (`lanes`), the last three
@@ -11,14 +13,14 @@
 //!   (`floor`), the USV's and the links' keep-out rows (`keep_out`, over a grid with obstacles),
 //!   C1_14's Turn rows (`heading`), the bands' lower ends (`links`), the bridges' line of sight
 //!   (`bridges`), the lanes' shortfalls (`lanes`), the vehicle's envelope (`depth`, `climb`,
-//!   `cruise`), slacks ν ≥ 0;
+//!   `cruise`), the AUVs' separation half-spaces (`separation`), slacks ν ≥ 0;
 //! - second-order cones: the speed limits (`speed`), C1_5/C1_6 (`ranges`), the trust region
 //!   and the AUVs' squared steps τ (`trust`), C1_14's slow alternatives (`heading`), the bands' upper ends (`links`), the
 //!   bridges' ranges (`bridges`).
 
 use super::model::Assembly;
 use super::{bounds, bridges, dynamics, floor, heading, keep_out, links, objective, ranges};
-use super::{climb, cruise, depth, lanes, speed, spread, trust, TeamProblem};
+use super::{climb, cruise, depth, lanes, separation, speed, spread, trust, TeamProblem};
 use crate::error::PlanError;
 use crate::trajectory::Trajectory;
 use clarabel::solver::SupportedConeT::NonnegativeConeT;
@@ -47,6 +49,7 @@ pub(super) fn assemble(
     depth::objective(p, &mut m, penalty);
     climb::objective(p, &mut m, penalty);
     cruise::objective(p, &mut m, penalty);
+    separation::objective(p, &mut m, penalty);
 
     // ---- zero cone ----
     dynamics::rows(p, r, &mut m);
@@ -84,6 +87,7 @@ pub(super) fn assemble(
     depth::rows(p, &mut m);
     climb::rows(p, r, &mut m);
     cruise::rows(p, r, &mut m);
+    separation::rows(p, r, &mut m); // the pairs near enough to matter, and the slacks
     for n in 0..nn {
         for k in 1..=kk {
             m.nonnegative(l.floor_slack(n, k));

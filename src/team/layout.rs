@@ -29,16 +29,21 @@ pub struct Layout {
     pub bridges: usize,
     /// Lane pairs of P5's lanes term (`lanes`; N − 1 with it, else 0).
     pub lane_pairs: usize,
+    /// Whether the AUVs keep a separation (`separation`), with a slack per AUV and segment.
+    pub separation: bool,
 }
 
 impl Layout {
     const AUV_BLOCK: usize = 13;
 
     pub fn variables(&self) -> usize {
-        self.envelope_base() + Self::ENVELOPE * self.n * self.k
+        self.separation_base() + if self.separation { self.n * self.k } else { 0 }
     }
     /// Slacks per AUV and step of the vehicle's envelope: `depth`, `climb`, `cruise`.
     const ENVELOPE: usize = 3;
+    fn separation_base(&self) -> usize {
+        self.envelope_base() + Self::ENVELOPE * self.n * self.k
+    }
     fn envelope_base(&self) -> usize {
         self.altitude_base()
             + if self.lane_pairs > 0 {
@@ -64,6 +69,12 @@ impl Layout {
     /// step k (`cruise`), m/s.
     pub fn cruise_slack(&self, n: usize, k: usize) -> usize {
         self.envelope(n, k, 2)
+    }
+    /// ν_s\[n\]\[k\]: slack of AUV n's separation rows of segment k − 1 → k (`separation`),
+    /// k = 1..=K.
+    pub fn separation_slack(&self, n: usize, k: usize) -> usize {
+        debug_assert!(self.separation && n < self.n && k >= 1 && k <= self.k);
+        self.separation_base() + n * self.k + (k - 1)
     }
     fn altitude_base(&self) -> usize {
         self.lane_base() + self.lane_pairs * (self.k - 1)
@@ -222,6 +233,7 @@ mod tests {
             obstacles: true,
             bridges: 1,
             lane_pairs: 1,
+            separation: true,
         };
         let d = l.scale(150.0);
         let mut positions = vec![false; l.variables()];
@@ -247,14 +259,14 @@ mod tests {
     /// Every index is used exactly once, for sizes including the edge cases K = 1 and N = 1.
     #[test]
     fn indices_tile_the_variable_vector() {
-        for (k, n, links, obstacles, bridges) in [
-            (1, 1, 0, false, 0),
-            (1, 3, 3, true, 1),
-            (2, 1, 1, false, 0),
-            (20, 5, 0, true, 0),
-            (20, 5, 5, false, 7),
-            (20, 5, 5, true, 3),
-            (7, 12, 12, false, 0),
+        for (k, n, links, obstacles, bridges, separation) in [
+            (1, 1, 0, false, 0, false),
+            (1, 3, 3, true, 1, true),
+            (2, 1, 1, false, 0, false),
+            (20, 5, 0, true, 0, true),
+            (20, 5, 5, false, 7, true),
+            (20, 5, 5, true, 3, false),
+            (7, 12, 12, false, 0, true),
         ] {
             // the lanes' shortfalls with a chain of two or more (links = N in P5)
             let lane_pairs = if links > 0 { n - 1 } else { 0 };
@@ -265,6 +277,7 @@ mod tests {
                 obstacles,
                 bridges,
                 lane_pairs,
+                separation,
             };
             let mut seen = vec![0u8; l.variables()];
             let mut mark = |i: usize, w: usize| (i..i + w).for_each(|j| seen[j] += 1);
@@ -322,9 +335,15 @@ mod tests {
                     mark(l.cruise_slack(a, s), 1);
                 }
             }
+            for a in 0..if separation { n } else { 0 } {
+                for s in 1..=k {
+                    mark(l.separation_slack(a, s), 1);
+                }
+            }
             assert!(
                 seen.iter().all(|&c| c == 1),
-                "K={k} N={n} links={links} obstacles={obstacles} bridges={bridges}"
+                "K={k} N={n} links={links} obstacles={obstacles} bridges={bridges} \
+                 separation={separation}"
             );
         }
     }

@@ -40,11 +40,12 @@ pub struct LinkSet {
 }
 
 impl LinkSet {
-    /// The chain of Step 2 with every band [d_s − d_t, d_s] (C5_2, C5_3).
-    pub fn from_graph(g: &Graph, sonar_range: f64, band_tolerance: f64) -> LinkSet {
+    /// The chain of Step 2 with every band [top − d_t, top] (C5_2, C5_3: top = d_s; ours:
+    /// ρ·d_s, `acoustic.link_margin`).
+    pub fn from_graph(g: &Graph, top: f64, band_tolerance: f64) -> LinkSet {
         let band = Band {
-            lo: sonar_range - band_tolerance,
-            hi: sonar_range,
+            lo: (top - band_tolerance).max(0.0),
+            hi: top,
         };
         let links: Vec<Vec<Link>> = g
             .a2u

@@ -18,6 +18,7 @@
 //! | `links` | P5's link bands C5_2/C5_3, priced by OF1_3/OF1_4 |
 //! | `bridges` | P5's A2U links where the planned path cannot be in range yet |
 //! | `spread` | OF1_5 |
+//! | `separation` | ours: every pair of AUVs at least `auv.min_separation` apart, along segments |
 //! | `objective` | OF2 (OF1_1, OF1_2, OF1_8 or OF1_8_2) and the objective's terms |
 //! | `trust` | SCvx's trust region |
 //!
@@ -49,6 +50,7 @@ mod links;
 mod model;
 mod objective;
 mod ranges;
+mod separation;
 mod speed;
 mod spread;
 mod trust;
@@ -59,6 +61,7 @@ pub use links::{
     describe, ends, length, outside, priced_band, priced_outside, LinkSet, ABOVE_FACTOR,
 };
 pub use objective::Terms;
+pub use separation::PairSegment;
 
 use crate::conic::{ConicSolver, Pattern, SolveReport};
 use crate::error::{PlanError, Step};
@@ -114,6 +117,9 @@ pub struct TeamProblem<'a> {
     /// The current the AUVs are planned in (`sim::current::planned`): their V is the velocity
     /// through the water, and the current moves their positions (`dynamics`).
     current: CurrentField,
+    /// The (pair, segment)s with separation rows (`separation`): grows as the SCP's
+    /// references bring pairs near, never shrinks (the solver's pattern is this set's).
+    separation: Vec<separation::PairSegment>,
 }
 
 impl<'a> TeamProblem<'a> {
@@ -134,6 +140,7 @@ impl<'a> TeamProblem<'a> {
             obstacles: floor.has_obstacles(),
             bridges: 0,
             lane_pairs: 0,
+            separation: false,
         };
         TeamProblem {
             scenario,
@@ -155,7 +162,20 @@ impl<'a> TeamProblem<'a> {
             solver: None,
             gap: crate::conic::GAP_TOL,
             current: CurrentField::new(&planned(&scenario.current)),
+            separation: Vec::new(),
         }
+        .with_separation()
+    }
+
+    /// The layout's separation slacks when the family applies (`separation::active`).
+    fn with_separation(mut self) -> TeamProblem<'a> {
+        self.layout.separation = separation::active(&self);
+        self
+    }
+
+    /// The (pair, segment)s that have separation rows so far.
+    pub fn separation_pairs(&self) -> &[PairSegment] {
+        &self.separation
     }
 
     /// The current at p, m/s (`sim::current::planned` of the scenario's `[current]`).
@@ -498,6 +518,11 @@ impl ScpProblem for TeamProblem<'_> {
         radius: f64,
         penalty: f64,
     ) -> Result<(Trajectory, f64, SolveReport), PlanError> {
+        // the pairs this reference brings near get rows; a new pattern needs a new solver
+        let near = separation::near(self, reference, radius);
+        if separation::extend(&mut self.separation, &near) {
+            self.solver = None;
+        }
         let m = assemble::assemble(self, reference, radius, penalty)?;
         let nvar = self.layout.variables();
         let solver = match &mut self.solver {
@@ -639,6 +664,10 @@ impl ScpProblem for TeamProblem<'_> {
             sum += v;
             worst = worst.max(v);
         }
+        for (v, _) in separation::violations(self, t) {
+            sum += v;
+            worst = worst.max(v);
+        }
         let weighted = objective::weighted(self, &self.terms(t));
         Evaluation {
             objective: weighted.iter().sum(),
@@ -740,6 +769,11 @@ impl ScpProblem for TeamProblem<'_> {
         for (bi, (v, at)) in bridges::violations(self, t).into_iter().enumerate() {
             if v > worst.0 {
                 worst = (v, bridges::detail(self, bi, at));
+            }
+        }
+        for (v, at) in separation::violations(self, t) {
+            if v > worst.0 {
+                worst = (v, separation::detail(self, t, at));
             }
         }
         PlanError::Infeasible {

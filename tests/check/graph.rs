@@ -1,8 +1,9 @@
 //! The Step 2 / Step 3 families on hand-built plans: the builder gives every plan an honest
 //! graph (A2U link = the AUV nearest the USV in Step 1's positions, A2A path in index order) and
-//! link report (bands of ±5 m around the final lengths, clipped to [0, d_s]; a link longer than
-//! d_s gets [d_s − d_t, d_s] and is listed in `out_of_band`), all computed here. Each test
-//! breaks one thing and expects exactly its family to fail.
+//! link report (bands of ±5 m around the final lengths, clipped to [0, ρ·d_s], ρ the plan's
+//! `acoustic.link_margin`; a link longer than ρ·d_s gets [ρ·d_s − d_t, ρ·d_s] and is listed in
+//! `out_of_band`), all computed here. Each test breaks one thing and expects exactly its family
+//! to fail.
 
 use super::*;
 use shoal::plan::{Band, Link, OutOfBand};
@@ -53,10 +54,8 @@ pub(super) fn fill_graph(plan: &mut Plan) {
 
 /// The link report of every window from its graph and final positions.
 pub(super) fn fill_links(plan: &mut Plan) {
-    let (d_s, d_t) = (
-        plan.scenario.acoustic.sonar_range,
-        plan.scenario.acoustic.band_tolerance,
-    );
+    let a = &plan.scenario.acoustic;
+    let (top, d_t) = (a.link_margin * a.sonar_range, a.band_tolerance);
     for w in 0..plan.windows.len() {
         let g = plan.windows[w].graph.clone();
         let (mut links, mut bands, mut out) = (vec![], vec![], vec![]);
@@ -72,15 +71,15 @@ pub(super) fn fill_links(plan: &mut Plan) {
             let mut bands_k = vec![];
             for &link in &at_k {
                 let len = length(plan, w, k, link);
-                let band = if len <= d_s {
+                let band = if len <= top {
                     Band {
                         lo: (len - 5.0).max(0.0),
-                        hi: (len + 5.0).min(d_s),
+                        hi: (len + 5.0).min(top),
                     }
                 } else {
                     let band = Band {
-                        lo: d_s - d_t,
-                        hi: d_s,
+                        lo: top - d_t,
+                        hi: top,
                     };
                     if k > 0 {
                         out.push(OutOfBand {
@@ -119,7 +118,7 @@ fn spec3(windows: usize) -> Spec {
 
 const PATH: &str = "A2A Hamiltonian path";
 const A2U: &str = "A2U link";
-const BANDS: &str = "link bands within [0, d_s]";
+const BANDS: &str = "link bands within [0, ρ·d_s]";
 const IN_BAND: &str = "links in band";
 const CONNECTED: &str = "acoustic connectivity (range + line of sight)";
 const CHAIN_LOS: &str = "planned chain line of sight";
@@ -557,4 +556,63 @@ fn malformed_graphs_fail_the_structure_without_panicking() {
     };
     let r = check_plan(&p, &floor);
     assert_fails_exactly(&r, &[BANDS, IN_BAND]);
+}
+
+/// Spec with a third AUV 125 m north of the USV's track, doing what AUV 0 does: its A2A edge
+/// to AUV 1 is within d_s = 150 m but beyond the default ρ·d_s = 120 m.
+fn spec_far(windows: usize) -> Spec {
+    let mut sp = spec3(windows);
+    sp.auv0[2] = [0.0, 125.0, -55.0];
+    sp
+}
+
+/// A plan must keep the margin it claims: its bands top at ρ·d_s (the plan's
+/// `acoustic.link_margin`), and a link beyond its band is listed in `out_of_band`. Honest, the
+/// far edge is listed and the plan passes; unlisted, or covered by a band raised to d_s, or
+/// with the plan claiming a margin its bands exceed, exactly the family that owns it fails.
+#[test]
+fn a_link_beyond_its_margin_fails_unless_reported() {
+    let floor = flat();
+    let plan = build(&spec_far(1), &floor);
+    let rho = plan.scenario.acoustic.link_margin;
+    assert!(rho < 1.0, "the default plans links inside d_s");
+    assert!(
+        !plan.windows[0].links.out_of_band.is_empty(),
+        "the far edge is beyond ρ·d_s"
+    );
+    let r = check_plan(&plan, &floor);
+    assert!(r.passed(), "\n{}", r.table());
+
+    // not listed in out_of_band: the link is beyond its band, unreported
+    let mut p = plan.clone();
+    p.windows[0].links.out_of_band.clear();
+    let r = check_plan(&p, &floor);
+    assert_fails_exactly(&r, &[IN_BAND]);
+    assert!(
+        r.family(IN_BAND).unwrap().where_.contains("not listed"),
+        "{}",
+        r.family(IN_BAND).unwrap().where_
+    );
+
+    // its band raised to d_s to cover it: the band is beyond the plan's margin
+    let mut p = plan.clone();
+    let d_s = p.scenario.acoustic.sonar_range;
+    for o in std::mem::take(&mut p.windows[0].links.out_of_band) {
+        let links = &p.windows[0].links.links[o.k];
+        let i = links.iter().position(|l| *l == o.link).unwrap();
+        p.windows[0].links.bands[o.k][i] = Band { lo: 0.0, hi: d_s };
+    }
+    let r = check_plan(&p, &floor);
+    assert_fails_exactly(&r, &[BANDS]);
+    assert!(
+        r.family(BANDS).unwrap().where_.contains("link_margin"),
+        "{}",
+        r.family(BANDS).unwrap().where_
+    );
+
+    // the plan claims a tighter margin than its bands keep
+    let mut p = build(&spec3(1), &floor);
+    p.scenario.acoustic.link_margin = 0.2; // ρ·d_s = 30 m, the bands reach ≈ 50 m
+    let r = check_plan(&p, &floor);
+    assert_fails_exactly(&r, &[BANDS]);
 }

@@ -419,6 +419,26 @@ fn auv_too_fast_fails_c1_7_only() {
     assert!(f.worst_margin < -0.3);
 }
 
+/// Two AUVs doing the same thing 6 m apart, inside the default separation of 10 m: the
+/// separation family fails, and only it; stating a separation of 5 m for the check passes it.
+#[test]
+fn two_auvs_within_the_separation_fail_its_family_only() {
+    let floor = flat();
+    let mut sp = spec(1);
+    sp.auv0[1] = [20.0, 4.0, -50.0];
+    sp.auv_u[0][1] = sp.auv_u[0][0].clone();
+    let plan = build(&sp, &floor);
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["AUV separation"]);
+    let f = r.family("AUV separation").unwrap();
+    assert!((f.worst_margin + 4.0).abs() < 1e-6, "{f:?}");
+    assert!(f.where_.contains("AUVs 0 and 1"), "{}", f.where_);
+    let mut stated = plan.scenario.clone();
+    stated.auv.min_separation = 5.0;
+    let r = check_plan_against(&plan, &floor, &stated, "from a test").unwrap();
+    assert!(r.passed(), "\n{}", r.table());
+}
+
 #[test]
 fn usv_too_fast_fails_usv_speed_only() {
     let floor = flat();
