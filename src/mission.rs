@@ -276,7 +276,9 @@ pub fn initial_state(
                 "no point for AUV {n} in {TRIES} draws within d_s = {ds} m of the USV, at least \
                  {} m below the surface, at most {} m deep, {} m above the floor and {} m from \
                  the AUVs drawn before (floor under the USV: z = {z0:.1} m)",
-                s.auv.surface_clearance, s.auv.max_depth, s.auv.floor_clearance,
+                s.auv.surface_clearance,
+                s.auv.max_depth,
+                s.auv.floor_clearance,
                 s.auv.min_separation
             )));
         };

@@ -45,7 +45,7 @@ impl Checker<'_> {
     pub(super) fn separation(&self) -> FamilyResult {
         let mut f = Family::new("AUV separation", "m", SEPARATION_TOL);
         let d = self.limits.auv.min_separation;
-        if !(d > 0.0) {
+        if d.is_nan() || d <= 0.0 {
             return f.finish();
         }
         for (w, pre, st) in self.stages() {

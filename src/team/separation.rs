@@ -168,7 +168,7 @@ pub(super) fn near(p: &TeamProblem, r: &Trajectory, radius: f64) -> Vec<PairSegm
             for j in i + 1..l.n {
                 let h = least_horizontal(relative(r, i, j, k - 1), relative(r, i, j, k));
                 // a non-finite reference (a stray first guess) is given its rows
-                if !(h >= reach) {
+                if h.is_nan() || h < reach {
                     out.push(PairSegment { i, j, k });
                 }
             }
