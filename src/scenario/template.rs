@@ -110,7 +110,7 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Least distance kept between any two AUVs, at every step k ≥ 1 and along the \
              segments between steps, metres (ours; the paper has none). The default is the \
              worst case of MOOS-IvP's collision avoidance (BHV_AvoidCollision's \
-             min_util_cpa_dist = 10 m). 0 turns it off. ≥ 0, below d_s."
+             min_util_cpa_dist = 10 m). 0 turns it off. ≥ 0."
         }
         "auv.swath_width" => {
             "Width of the seafloor swath one AUV's sensor covers, metres (ours; for the \

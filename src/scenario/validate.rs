@@ -343,16 +343,10 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         v.surface_clearance,
         "metres (C1_4)",
     );
-    c.float_rel(
+    c.non_negative(
         "auv.min_separation",
         v.min_separation,
-        v.min_separation >= 0.0 && v.min_separation < s.acoustic.sonar_range,
-        format!(
-            "must be a number of metres with 0 ≤ value < d_s = acoustic.sonar_range = {} \
-             (the least distance between two AUVs; 0 turns it off)",
-            num(s.acoustic.sonar_range)
-        ),
-        &["acoustic.sonar_range"],
+        "metres (the least distance between two AUVs; 0 turns it off)",
     );
     c.positive(
         "auv.swath_width",

@@ -312,10 +312,17 @@ mod tests {
         /// reference gave) keeps ‖r(t)‖ ≥ d all along.
         #[test]
         fn the_half_spaces_keep_the_whole_segment_apart(
-            a0 in point(), a1 in point(), b0 in point(), b1 in point(), d in 1.0..30.0f64,
+            a0 in point(), a1 in point(), c0 in point(), c1 in point(), d in 1.0..30.0f64,
+            s0 in 0.0..20.0f64, s1 in 0.0..20.0f64,
         ) {
             let n = direction(a0, a1);
-            prop_assume!(dot(n, b0) >= d && dot(n, b1) >= d);
+            // any ends that keep n̂ᵀb ≥ d: c moved along n̂ until n̂ᵀb = d + s
+            let onto = |c: [f64; 3], s: f64| {
+                let shift = d + s - dot(n, c);
+                [c[0] + shift * n[0], c[1] + shift * n[1], c[2] + shift * n[2]]
+            };
+            let (b0, b1) = (onto(c0, s0), onto(c1, s1));
+            prop_assert!(dot(n, b0) >= d - 1e-9 && dot(n, b1) >= d - 1e-9);
             prop_assert!(least_distance(b0, b1) >= d - 1e-9);
             prop_assert!(sample(b0, b1, 2_000) >= d - 1e-9);
         }

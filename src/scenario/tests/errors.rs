@@ -570,7 +570,6 @@ const EVERY_RULE: &[(&[&str], &str)] = &[
     (&["auv.floor_clearance=-1"], "auv.floor_clearance"),
     (&["auv.surface_clearance=-1"], "auv.surface_clearance"),
     (&["auv.min_separation=-1"], "auv.min_separation"),
-    (&["auv.min_separation=150"], "auv.min_separation"),
     (&["auv.swath_width=0"], "auv.swath_width"),
     (&["auv.survey_altitude=0"], "auv.survey_altitude"),
     (&["auv.discretisation=\"rk4\""], "auv.discretisation"),
