@@ -851,6 +851,21 @@ fn a_tampered_input_fails_the_dynamics_only() {
     assert_fails_exactly(&r, &["eq. (9) USV dynamics"]);
 }
 
+/// The checker rolls the dynamics in the current the plan records: a plan made in still water
+/// but recording a current fails the position dynamics only (its velocities are through the
+/// water, and the current would have carried it 0.2 m/s × δ further each step).
+#[test]
+fn a_plan_is_checked_in_the_current_it_records() {
+    let floor = flat();
+    let mut plan = build(&spec(1), &floor);
+    assert!(check_plan(&plan, &floor).passed());
+    plan.current.velocity = [0.2, 0.0];
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["C1_1 AUV dynamics (position)"]);
+    let f = r.family("C1_1 AUV dynamics (position)").unwrap();
+    assert!((f.worst_margin + 0.2 * DT).abs() < 1e-6, "{f:?}");
+}
+
 #[test]
 fn a_tampered_objective_fails_the_objective_only() {
     let floor = flat();
