@@ -233,6 +233,8 @@ fn regression_an_unconverged_plan_says_so() {
     let mut s = small(1);
     s.windows = 1;
     s.scp.max_iterations = 1;
+    // no cruise floor: with it the team cannot barely move
+    s.auv.min_speed = 0.0;
     // OF1_8 per m² (the paper's weighting): with weights.w8_scaling = "energy" this window of
     // 8 steps weighs it 2.5× and goes past a tenth of its reach in one SCP iteration
     s.weights.w8_scaling = shoal::scenario::W8Scaling::None;
@@ -530,7 +532,8 @@ fn regression_check_holds_the_plan_to_the_limits_the_user_states() {
         "{out}"
     );
 
-    // the AUV's limit of the user's vehicle: 0.5 m/s; the plan flew faster
+    // the AUV's limit of the user's vehicle: 0.5 m/s (and a cruise floor below it); the plan
+    // flew faster
     let m = mission.to_str().unwrap();
     let (code, out, _) = check(&[
         "--scenario",
@@ -541,12 +544,15 @@ fn regression_check_holds_the_plan_to_the_limits_the_user_states() {
         "horizon.steps=3",
         "--set",
         "auv.max_speed=0.5",
+        "--set",
+        "auv.min_speed=0.4",
     ]);
     assert_eq!(code, 1, "{out}");
     assert!(
         out.starts_with(&format!(
             "limits: from {m} with --set team.auvs=1 --set horizon.steps=3 --set \
-             auv.max_speed=0.5\n  auv.max_speed = 0.5 (stated), 2 as recorded in the plan\n"
+             auv.max_speed=0.5 --set auv.min_speed=0.4\n  auv.max_speed = 0.5 (stated), 2 as \
+             recorded in the plan\n"
         )),
         "{out}"
     );
@@ -557,10 +563,13 @@ fn regression_check_holds_the_plan_to_the_limits_the_user_states() {
     assert!(row.ends_with("FAIL"), "{row}");
 
     // --set alone applies over the plan's recorded scenario
-    let (code, out, _) = check(&["--set", "auv.max_speed=0.5"]);
+    let (code, out, _) = check(&["--set", "auv.max_speed=0.5", "--set", "auv.min_speed=0.4"]);
     assert_eq!(code, 1, "{out}");
     assert!(
-        out.starts_with("limits: as recorded in the plan with --set auv.max_speed=0.5\n"),
+        out.starts_with(
+            "limits: as recorded in the plan with --set auv.max_speed=0.5 --set \
+             auv.min_speed=0.4\n"
+        ),
         "{out}"
     );
     // a stated limit the plan keeps

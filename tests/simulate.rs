@@ -723,7 +723,7 @@ fn regression_simulate_in_a_strong_current_writes_its_record() {
 fn regression_a_current_the_auvs_cannot_stem_stops_with_a_message() {
     // the flight's state turned NaN, and the first estimator then refused its odometry
     let (plan, floor) = default_plan();
-    let p = run::with_settings(plan, "plan.json", &["current.velocity=[3,0]".into()]).unwrap();
+    let p = run::with_settings(plan, "plan.json", &["current.velocity=[0,3]".into()]).unwrap();
     let e = simulate(&p, "plan.json", floor, 1).unwrap_err();
     assert!(matches!(e, SimError::Diverged { .. }), "{e}");
     let e = e.to_string();

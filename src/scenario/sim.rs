@@ -1,7 +1,8 @@
-//! The sections `shoal simulate` reads and the planner ignores: `[current]` (the ocean current
+//! The sections `shoal simulate` reads: `[current]` (the ocean current
 //! the vehicles feel), `[navigation]` (the sensors and acoustic modems, each default a typical
 //! value for a REMUS 100-class vehicle, with its source) and `[simulation]` (the integrator).
-//! The planner does not know the current (yet): a plan is made in still water and flown in it.
+//! The MPC planner plans in `[current]`'s velocity and profile too (`sim::current::planned`;
+//! not in its grid files): the AUVs' planned velocities are through the water.
 
 use serde::{Deserialize, Serialize};
 

@@ -326,8 +326,9 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "Step 1 (P2) only: its own max_iterations (when absent: max_iterations). ≥ 1."
         }
         "current" => {
-            "The ocean current `shoal simulate` flies the plan in (ours; the planner does not \
-             know it): horizontal, constant in time; uniform at each depth (velocity), or \
+            "The ocean current (ours): the MPC planner plans the AUVs' velocities through the \
+             water in it (eq. (8)'s ϖ term; not from grid files), and `shoal simulate` flies \
+             the plan in it: horizontal, constant in time; uniform at each depth (velocity), or \
              varying in x and y from two grid files (file_east, file_north)."
         }
         "current.velocity" => {

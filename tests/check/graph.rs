@@ -385,6 +385,7 @@ fn an_auv_out_of_range_of_everyone_fails_connectivity_only() {
     // than d_s and listed in out_of_band, honestly); at k = 0 and K it is near again.
     let floor = flat();
     let mut sp = spec(1);
+    sp.s.auv.min_speed = 0.0; // AUVs held still: no cruise floor
     sp.s.horizon.dt = 100.0;
     let e = rates(&sp.s)[0];
     sp.usv_u[0] = vec![[0.0; 2]; K];
@@ -418,6 +419,7 @@ fn a_blocked_line_of_sight_cuts_an_auv_off() {
     // floor elsewhere at −100 m, AUV 1 at −90 m). Every line from it to the USV or AUV 0 meets
     // the rim, although both are in range.
     let mut sp = spec(1);
+    sp.s.auv.min_speed = 0.0; // AUVs held still: no cruise floor
     sp.s.acoustic.resolution = 1.0;
     sp.auv0[1] = [-20.0, -10.0, -90.0];
     sp.auv_u[0][1] = vec![[0.0; 3]; K];
@@ -449,6 +451,7 @@ fn a_link_over_an_obstacle_cell_has_no_line_of_sight() {
     // AUV 0 waits at (20, 10), AUV 1 at (20, 60): their link runs along x = 20, through the
     // cells beside a NODATA node at (25, 35), where the floor along x = 20 is still −100 m
     let mut sp = spec(1);
+    sp.s.auv.min_speed = 0.0; // AUVs held still: no cruise floor
     sp.auv0 = vec![[20.0, 10.0, -50.0], [20.0, 60.0, -60.0]];
     sp.auv_u[0] = vec![vec![[0.0; 3]; K]; 2];
     let floor = grid(-300.0, -300.0, 5.0, 121, |x, y| {
@@ -482,7 +485,8 @@ fn the_final_stage_is_the_plan() {
     let floor = flat();
     // Step 1 of window 0 took other inputs (slower AUVs) than the final stage: fine, as long as
     // the graph is built on Step 1's positions and window 1 starts from the final stage's end
-    let sp = spec(2);
+    let mut sp = spec(2);
+    sp.s.auv.min_speed = 0.0; // the slower AUVs stay below the spec's cruise floor
     let mut slow = spec(2);
     for u in slow.auv_u[0].iter_mut().flatten() {
         u[0] *= 0.5;

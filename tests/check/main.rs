@@ -383,6 +383,7 @@ fn a_valid_euler_plan_passes_and_a_zoh_plan_is_not_an_euler_plan() {
     let mut sp = spec(1);
     sp.s.auv.discretisation = Discretisation::Euler;
     sp.s.horizon.dt = 2.0; // |1 − δ·e_heave| ≤ 1 needs δ ≤ 5 s
+    sp.s.auv.min_speed = 0.0; // at δ = 2 s the AUVs ramp up slower than the spec's floor
     let plan = build(&sp, &floor);
     let r = check_plan(&plan, &floor);
     assert!(r.passed(), "\n{}", r.table());
@@ -732,6 +733,7 @@ fn too_far_from_the_usv_at_k_fails_c1_6_only() {
     sp.s.team.auvs = 3;
     sp.auv0.push([-30.0, 0.0, -55.0]);
     sp.auv_u[0].push(vec![[0.0; 3]; K]);
+    sp.s.auv.min_speed = 0.0; // the relay waits: no cruise floor
     let r = check_plan(&build(&sp, &floor), &floor);
     assert_fails_exactly(&r, &["C1_6 sonar range at k = 0, K"]);
     let f = r.family("C1_6 sonar range at k = 0, K").unwrap();
@@ -869,6 +871,21 @@ fn a_tampered_input_fails_the_dynamics_only() {
     plan.windows[0].final_.usv.input[3][1] += 0.01;
     let r = check_plan(&plan, &floor);
     assert_fails_exactly(&r, &["eq. (9) USV dynamics"]);
+}
+
+/// The checker rolls the dynamics in the current the plan records: a plan made in still water
+/// but recording a current fails the position dynamics only (its velocities are through the
+/// water, and the current would have carried it 0.2 m/s × δ further each step).
+#[test]
+fn a_plan_is_checked_in_the_current_it_records() {
+    let floor = flat();
+    let mut plan = build(&spec(1), &floor);
+    assert!(check_plan(&plan, &floor).passed());
+    plan.current.velocity = [0.2, 0.0];
+    let r = check_plan(&plan, &floor);
+    assert_fails_exactly(&r, &["C1_1 AUV dynamics (position)"]);
+    let f = r.family("C1_1 AUV dynamics (position)").unwrap();
+    assert!((f.worst_margin + 0.2 * DT).abs() < 1e-6, "{f:?}");
 }
 
 #[test]
