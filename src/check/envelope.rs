@@ -4,7 +4,8 @@
 //! * **depth rating**: every waypoint keeps z ≥ −`auv.max_depth` (the path between waypoints is
 //!   their straight segment, so the waypoints suffice); margin max_depth + z, metres.
 //! * **flight-path angle**: every velocity through the water (the plan's V) keeps
-//!   |V_z| ≤ tan(`auv.max_flight_path_angle`)·‖V_h‖; margin the difference, m/s.
+//!   |V_z| ≤ tan(`auv.max_flight_path_angle`)·‖V_h‖, and from step 1 on climbs at most
+//!   V_z ≤ `auv.climb_per_speed`·(‖V_h‖ − `auv.level_speed`); margin the least difference, m/s.
 //! * **cruise floor** (with `auv.min_speed` > 0): every velocity from step 1 on keeps
 //!   ‖V_h‖ ≥ min_speed, and so does every point between two of them: under the zero-order hold
 //!   V_h runs along the straight line between consecutive velocities, so the least speed on a
@@ -45,9 +46,18 @@ impl Checker<'_> {
             let v = &a.velocity;
             for (k, v) in v.iter().enumerate().take(self.k.saturating_add(1)) {
                 let h = v[0].hypot(v[1]);
-                fg.record(slope * h - v[2].abs(), || {
+                let climb = if k >= 1 {
+                    auv.climb_per_speed * (h - auv.level_speed) - v[2]
+                } else {
+                    f64::INFINITY // the window's start: at rest, or the last window's end
+                };
+                fg.record((slope * h - v[2].abs()).min(climb), || {
                     let angle = v[2].atan2(h).to_degrees();
-                    at(w, k, &format!("{who}: flight-path angle {angle:.2}°"))
+                    at(
+                        w,
+                        k,
+                        &format!("{who}: flight-path angle {angle:.2}° at {h:.3} m/s"),
+                    )
                 });
             }
             if floor <= 0.0 {

@@ -666,6 +666,18 @@ pub const LIMITS: &[Limit] = &[
         set: |s, v| s.auv.max_flight_path_angle = v,
     },
     Limit {
+        key: "auv.level_speed",
+        families: "flight-path angle (climbs)",
+        value: |s| s.auv.level_speed,
+        set: |s, v| s.auv.level_speed = v,
+    },
+    Limit {
+        key: "auv.climb_per_speed",
+        families: "flight-path angle (climbs)",
+        value: |s| s.auv.climb_per_speed,
+        set: |s, v| s.auv.climb_per_speed = v,
+    },
+    Limit {
         key: "auv.min_speed",
         families: "cruise floor",
         value: |s| s.auv.min_speed,

@@ -161,6 +161,13 @@ pub struct Auv {
     /// Cruise floor, m/s: the horizontal speed through the water stays at least this from
     /// step 1 on (`team::cruise`); 0 turns the floor off.
     pub min_speed: f64,
+    /// The slowest horizontal speed through the water at which the vehicle holds its depth in
+    /// level flight, m/s: climbing needs more (`team::climb`).
+    pub level_speed: f64,
+    /// The climb rate (m/s) the vehicle gains per m/s of horizontal speed through the water
+    /// above `level_speed`: from step 1 on V_z ≤ climb_per_speed·(‖V_h‖ − level_speed)
+    /// (`team::climb`).
+    pub climb_per_speed: f64,
     /// ε of C2_2: clearance above the seafloor, metres.
     pub floor_clearance: f64,
     /// C1_4: AUVs stay at least this far below the surface (z ≤ −surface_clearance), metres.
@@ -521,10 +528,19 @@ impl Default for Auv {
             // the water is pitch less angle of attack, a few degrees at cruise
             max_flight_path_angle: 0.3,
             // ours: REMUS 100 cruises at ~1.5 m/s (3 kn, spec sheet); its fins lose authority
-            // below ~1 m/s (Prestero 2001: the fin lift grows with u²). Flown by `shoal
-            // simulate`, plans held at 1.0 m/s still sank at their 1.03 m/s legs (seed 4,
-            // N = 5: 509 samples below the floor); at 1.2 m/s none did
-            min_speed: 1.2,
+            // below ~1 m/s (Prestero 2001: the fin lift grows with u²). The 6-DoF model's trim
+            // (docs/simulation.md, "What the vehicle can fly") holds depth down to 1.144 m/s
+            // with all its stern plane, 1.37 m/s with a quarter of it spare; flown, plans held
+            // at 1.0 m/s sank at their 1.03 m/s legs (seed 4, N = 5: 509 samples below the
+            // floor). 1.25 m/s leaves 13 % of the stern plane for control in level flight
+            min_speed: 1.25,
+            // ours: Prestero's REMUS 100 in trim holds level flight down to 1.144 m/s and
+            // climbs at most +0.2° at 1.15, +4.8° at 1.25, +7.7° at 1.3, +15.2° at 1.4, +27.1°
+            // at 1.5 m/s (docs/simulation.md, "What the vehicle can fly"): a climb rate of at
+            // most 0.8·(v − 1.15) m/s lies below every one of those (0.08 of 0.105 m/s at
+            // 1.25, 0.2 of 0.37 at 1.4, 0.28 of 0.68 at 1.5)
+            level_speed: 1.15,
+            climb_per_speed: 0.8,
             floor_clearance: 5.0, // ε; REMUS survey altitude is typically 3–10 m
             surface_clearance: 2.0, // stay 2 m below the surface (C1_4)
             // MOOS-IvP's BHV_AvoidCollision: min_util_cpa_dist = 10 m by default, the closest

@@ -96,11 +96,23 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
              |V_z| ≤ tan(γ_max)·‖V_h‖ (ours; the paper has none). Default 0.3 rad (17°): a \
              REMUS keeps its pitch within about ±15–20° (Prestero 2001). 0 < value < π/2."
         }
+        "auv.level_speed" => {
+            "The slowest horizontal speed through the water, m/s, at which the AUV holds its \
+             depth in level flight: from step 1 on it climbs at most \
+             climb_per_speed·(‖V_h‖ − level_speed) (ours; the paper has none). Default 1.15 m/s: \
+             Prestero's REMUS 100 holds depth down to 1.144 m/s. 0 ≤ value < max_speed."
+        }
+        "auv.climb_per_speed" => {
+            "Climb rate (m/s) the AUV gains per m/s of horizontal speed through the water above \
+             level_speed. Default 0.8: below every sustained climb of Prestero's REMUS 100 \
+             (+4.8° at 1.25 m/s, +15° at 1.4, +27° at 1.5). 0 < value ≤ 1000; a large value \
+             leaves only max_flight_path_angle."
+        }
         "auv.min_speed" => {
             "Cruise floor, m/s: from step 1 on every AUV's horizontal speed through the water \
              stays at least this (ours; the paper has none), held along each step's segment. \
-             Default 1.2 m/s: a REMUS 100 cruises at ~1.5 m/s and its fins lose authority \
-             below ~1 m/s (Prestero 2001); simulated flights sank at 1.03 m/s. 0 turns the floor off. min_heading_speed ≤ value < \
+             Default 1.25 m/s: a REMUS 100 cruises at ~1.5 m/s and Prestero's model holds \
+             its depth only above 1.144 m/s; simulated flights sank at 1.03 m/s. 0 turns the floor off. min_heading_speed ≤ value < \
              max_speed, or 0."
         }
         "auv.floor_clearance" => {

@@ -321,6 +321,18 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         v.max_flight_path_angle > 0.0 && v.max_flight_path_angle < std::f64::consts::FRAC_PI_2,
         "must be an angle in radians with 0 < value < π/2",
     );
+    c.float(
+        "auv.level_speed",
+        v.level_speed,
+        v.level_speed >= 0.0 && v.level_speed < v.max_speed,
+        "must be a number of m/s with 0 ≤ value < auv.max_speed",
+    );
+    c.float(
+        "auv.climb_per_speed",
+        v.climb_per_speed,
+        v.climb_per_speed > 0.0 && v.climb_per_speed <= 1e3,
+        "must be a number with 0 < value ≤ 1000 (m/s of climb per m/s of speed)",
+    );
     c.float_rel(
         "auv.min_speed",
         v.min_speed,
