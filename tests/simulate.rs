@@ -570,7 +570,7 @@ fn regression_an_estimator_that_does_not_converge_is_reported_for_its_policy() {
     // with this current the factor graph of one policy did not converge, and simulate exited 2
     // writing nothing
     let (plan, floor) = default_plan();
-    let p = run::with_settings(plan, "plan.json", &["current.velocity=[0.5,0.2]".into()]).unwrap();
+    let p = run::with_settings(plan, "plan.json", &["current.velocity=[1.2,-0.3]".into()]).unwrap();
     let r = simulate(&p, "plan.json", floor, 1).unwrap();
     assert!(!r.failed_estimates.is_empty(), "every estimator converged");
     let f = &r.failed_estimates[0];
