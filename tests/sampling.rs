@@ -10,10 +10,24 @@ use shoal::sampling::waypoints::{self, WaypointsFile, WaypointsWindow, WAYPOINTS
 use shoal::scenario::{self, Scenario};
 use shoal::{check, PlanError, Planner, Provenance, Seafloor};
 
+/// The default scenario with `sets`, for a vehicle without the envelope (no depth rating to
+/// speak of, any flight-path angle, no cruise floor): the sampling baseline, the paper's,
+/// does not plan within it, and the comparisons hold both planners to the same rules.
 fn scenario_with(sets: &[&str]) -> Scenario {
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let sets: Vec<String> = NO_ENVELOPE
+        .iter()
+        .chain(sets)
+        .map(|s| s.to_string())
+        .collect();
     scenario::default_with(&sets).expect("valid overrides")
 }
+
+/// The overrides that take the vehicle's envelope away.
+const NO_ENVELOPE: [&str; 3] = [
+    "auv.max_depth=1000",
+    "auv.max_flight_path_angle=1.5",
+    "auv.min_speed=0",
+];
 
 fn floor_of(s: &Scenario) -> Seafloor {
     Seafloor::synthetic(&s.seafloor.synthetic, s.seed).unwrap()
@@ -256,6 +270,12 @@ fn cli_rrt_like_writes_a_plan_that_checks() {
         "rrt-like",
         "--set",
         "team.auvs=2",
+        "--set",
+        NO_ENVELOPE[0],
+        "--set",
+        NO_ENVELOPE[1],
+        "--set",
+        NO_ENVELOPE[2],
         "--no-plot",
         "-o",
         out.to_str().unwrap(),
