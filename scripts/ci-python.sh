@@ -42,8 +42,9 @@ t1=$(stamp)
 # --locked: the build uses Cargo.lock as committed, as every cargo command of .ci/run does.
 # The test profile is cargo's dev profile at opt-level 2 with line tables only (Cargo.toml,
 # [profile.test]); it is given as such, because `cargo rustc --profile test`, which maturin
-# runs, would build the crate as a test harness instead of a library. Cargo shares artifacts between profiles of
-# equal settings, so this reuses what `cargo test` compiled.
+# runs, would build the crate as a test harness instead of a library. Cargo shares artifacts
+# between profiles of equal settings, but this package's dependency features differ from the
+# test build's (pyo3, numpy), so most dependencies compile again here.
 if [ "$profile" = test ]; then
     export CARGO_PROFILE_DEV_OPT_LEVEL=2
     export CARGO_PROFILE_DEV_DEBUG=line-tables-only
