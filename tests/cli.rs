@@ -243,7 +243,6 @@ fn regression_an_unconverged_plan_says_so() {
     s.weights.w8_scaling = shoal::scenario::W8Scaling::None;
     let (p, _) = plan_and_check(&s).expect("plan");
     assert_eq!(p.windows[0].step1.status, "max_iterations");
-<<<<<<< HEAD
     assert_eq!(p.warnings.len(), 2, "{:?}", p.warnings);
     assert!(p.warnings[0].starts_with("window 0: step 1 (P2) stopped at scp.max_iterations = 1"));
     // and a team that barely moves in an unconverged window is put down to the SCP, not to the
@@ -259,21 +258,6 @@ fn regression_an_unconverged_plan_says_so() {
             && w.contains("the window's SCP did not converge")),
         "{warnings:?}"
     );
-=======
-    // and (issue 14) the team barely moves, put down to the SCP, not to the weights
-    let w: Vec<&String> = p
-        .warnings
-        .iter()
-        .filter(|w| w.starts_with("window 0"))
-        .collect();
-    assert_eq!(w.len(), 3, "{:?}", p.warnings);
-    assert!(w[2].contains("the window's SCP did not converge"));
-    assert!(w[0].starts_with("window 0: step 1 (P2) stopped at scp.max_iterations = 1"));
-    assert!(p
-        .warnings
-        .iter()
-        .any(|w| w.starts_with("auv.max_flight_path_angle")));
->>>>>>> envelope
     let (dir, code, out, err) = plan_cli("unconverged", &["--set", "scp.max_iterations=1"]);
     assert_eq!(code, 0, "{out}\n{err}");
     assert!(
