@@ -5,7 +5,8 @@
 //!   their straight segment, so the waypoints suffice); margin max_depth + z, metres.
 //! * **flight-path angle**: every velocity through the water (the plan's V) keeps
 //!   |V_z| ≤ tan(`auv.max_flight_path_angle`)·‖V_h‖, and from step 1 on climbs at most
-//!   V_z ≤ `auv.climb_per_speed`·(‖V_h‖ − `auv.level_speed`); margin the least difference, m/s.
+//!   V_z ≤ `auv.climb_per_speed`·(‖V_h‖ − `auv.level_speed`) while the cruise floor is on;
+//!   margin the least difference, m/s.
 //! * **cruise floor** (with `auv.min_speed` > 0): every velocity from step 1 on keeps
 //!   ‖V_h‖ ≥ min_speed, and so does every point between two of them: under the zero-order hold
 //!   V_h runs along the straight line between consecutive velocities, so the least speed on a
@@ -46,7 +47,7 @@ impl Checker<'_> {
             let v = &a.velocity;
             for (k, v) in v.iter().enumerate().take(self.k.saturating_add(1)) {
                 let h = v[0].hypot(v[1]);
-                let climb = if k >= 1 {
+                let climb = if k >= 1 && floor > 0.0 {
                     auv.climb_per_speed * (h - auv.level_speed) - v[2]
                 } else {
                     f64::INFINITY // the window's start: at rest, or the last window's end

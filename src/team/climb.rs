@@ -34,6 +34,9 @@ pub struct ClimbRule {
     pub level_speed: f64,
     /// c: climb rate per m/s above v_l.
     pub climb_per_speed: f64,
+    /// Whether the cruise floor is on (`auv.min_speed` > 0): the climb line belongs to a vehicle
+    /// that flies on its fins; with the floor off (a vehicle that can hover) only the angle holds.
+    pub cruising: bool,
 }
 
 impl ClimbRule {
@@ -52,7 +55,11 @@ impl ClimbRule {
     pub fn violation(&self, v: [f64; 3]) -> f64 {
         let h = v[0].hypot(v[1]);
         let angle = v[2].abs() - self.slope() * h;
-        let climb = v[2] - self.climb_slope() * (h - self.level_speed);
+        let climb = if self.cruising {
+            v[2] - self.climb_slope() * (h - self.level_speed)
+        } else {
+            0.0
+        };
         angle.max(climb).max(0.0)
     }
 
@@ -61,6 +68,11 @@ impl ClimbRule {
     pub fn rows(&self, d: [f64; 2]) -> [([f64; 3], f64); 3] {
         let t = self.slope();
         let c = self.climb_slope();
+        // with the cruise floor off the third row repeats the first
+        if !self.cruising {
+            let up = ([-t * d[0], -t * d[1], 1.0], 0.0);
+            return [up, ([-t * d[0], -t * d[1], -1.0], 0.0), up];
+        }
         [
             ([-t * d[0], -t * d[1], 1.0], 0.0),
             ([-t * d[0], -t * d[1], -1.0], 0.0),
@@ -76,6 +88,7 @@ pub(super) fn rule(p: &TeamProblem) -> ClimbRule {
         max_angle: auv.max_flight_path_angle,
         level_speed: auv.level_speed,
         climb_per_speed: auv.climb_per_speed,
+        cruising: auv.min_speed > 0.0,
     }
 }
 
@@ -145,7 +158,9 @@ mod tests {
             s in 0.0..2.0f64, psi in -3.2..3.2f64, z in -1.0..1.0f64,
             angle in 0.05..1.4f64, level in 0.0..1.5f64, per in 0.1..3.0f64,
         ) {
-            let r = ClimbRule { max_angle: angle, level_speed: level, climb_per_speed: per };
+            let r = ClimbRule {
+                max_angle: angle, level_speed: level, climb_per_speed: per, cruising: true,
+            };
             let reference = [rs * rpsi.cos(), rs * rpsi.sin(), rz];
             let d = [rpsi.cos(), rpsi.sin()];
             let rows = r.rows(d);
