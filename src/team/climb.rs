@@ -86,7 +86,9 @@ pub(super) fn rule(p: &TeamProblem) -> ClimbRule {
     let auv = &p.scenario.auv;
     ClimbRule {
         max_angle: auv.max_flight_path_angle,
-        level_speed: auv.level_speed,
+        // level flight is always allowed at the cruise floor: a floor below v_l (another
+        // vehicle's) lowers v_l to it
+        level_speed: auv.level_speed.min(auv.min_speed),
         climb_per_speed: auv.climb_per_speed,
         cruising: auv.min_speed > 0.0,
     }
