@@ -48,7 +48,8 @@ impl Checker<'_> {
             for (k, v) in v.iter().enumerate().take(self.k.saturating_add(1)) {
                 let h = v[0].hypot(v[1]);
                 let climb = if k >= 1 && floor > 0.0 {
-                    auv.climb_per_speed * (h - auv.level_speed.min(floor)) - v[2]
+                    // a speed below the floor is the cruise family's, not this one's
+                    auv.climb_per_speed * (h.max(floor) - auv.level_speed.min(floor)) - v[2]
                 } else {
                     f64::INFINITY // the window's start: at rest, or the last window's end
                 };
