@@ -32,7 +32,8 @@ const UNDERWATER: &str = "C1_4 (AUVs stay below the surface clearance)";
 /// How infeasible grid bounds are named.
 const GRID: &str = "the grid bounds (every vehicle stays over the seafloor grid)";
 /// How an infeasible terminal margin is named.
-const TERMINAL: &str = "the terminal margin (every AUV can slow down on the grid after the window)";
+const TERMINAL: &str =
+    "the terminal margin (every AUV can slow down, or turn round, on the grid after the window)";
 
 /// The true violation of C1_4 and of the grid bounds by AUV n at step k, metres: how far it is
 /// above the surface clearance, or outside the grid. The model holds both hard, so only a
@@ -61,16 +62,32 @@ pub(super) fn violation(p: &TeamProblem, t: &Trajectory, n: usize, k: usize) -> 
 }
 
 /// For axis i: the coast point's velocity gain pv − pu·vv/vu (s) and the terminal margin
-/// (pu/vu)·v_min (m); None for an axis whose velocity no input moves (vu = 0).
+/// (m): (pu/vu)·v_min, or with a cruise floor the radius of the first guess's turn (an AUV
+/// that cannot slow down turns round instead, `turn_radius`); None for an axis whose velocity
+/// no input moves (vu = 0).
 fn coast(p: &TeamProblem, i: usize) -> Option<(f64, f64)> {
     let m = &p.auv;
     (m.vu[i] > 0.0).then(|| {
         let lever = m.pu[i] / m.vu[i];
-        (
-            m.pv[i] - lever * m.vv[i],
-            lever * p.scenario.auv.min_heading_speed,
-        )
+        let margin = match super::guess::turn_radius(p) {
+            Some(r) => r,
+            None => lever * p.scenario.auv.min_heading_speed,
+        };
+        (m.pv[i] - lever * m.vv[i], margin)
     })
+}
+
+/// How far inside the grid's edge (m, per axis) a first guess keeps every vehicle so that
+/// its AUVs meet the terminal margin: the margin plus the coast at `max_speed`; 0 in a
+/// window without one.
+pub(super) fn guess_inset(p: &TeamProblem) -> f64 {
+    if !p.terminal {
+        return 0.0;
+    }
+    (0..2)
+        .filter_map(|i| coast(p, i))
+        .map(|(gain, margin)| margin + RANGE_MARGIN + gain.abs() * p.scenario.auv.max_speed)
+        .fold(0.0, f64::max)
 }
 
 /// The terminal margin of AUV n (module documentation), when the window has one: its coast

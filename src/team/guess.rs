@@ -104,16 +104,37 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
     let (kk, nn) = (problem.layout.k, problem.layout.n);
     let dt = s.horizon.dt;
     let u = [speed * dir.cos(), speed * dir.sin()];
-    // at the grid's edge the guess stops (the plan may not leave the known map)
-    let toward = |p: [f64; 3], u: [f64; 2]| {
+    // at the grid's edge the guess stops (the plan may not leave the known map), short of it
+    // by the terminal margin's room in a window that another follows
+    // (the USV's course by that and the formation's radius more, so that the formation does
+    // not pile its AUVs up against the margin)
+    let inset = super::bounds::guess_inset(problem);
+    let radius = if inset > 0.0 {
+        let o = problem.start.usv;
+        problem
+            .start
+            .auvs
+            .iter()
+            .map(|a| (a.position[0] - o[0]).hypot(a.position[1] - o[1]))
+            .fold(0.0, f64::max)
+    } else {
+        0.0
+    };
+    let e = problem.floor.extent();
+    let toward_by = |p: [f64; 3], u: [f64; 2], inset: f64| {
         let q = problem.inside([p[0] + u[0] * dt, p[1] + u[1] * dt, p[2]]);
+        let q = [
+            inset_clamp(q[0], p[0], e.x_min + inset, e.x_max - inset),
+            inset_clamp(q[1], p[1], e.y_min + inset, e.y_max - inset),
+        ];
         [(q[0] - p[0]) / dt, (q[1] - p[1]) / dt]
     };
+    let toward = |p: [f64; 3], u: [f64; 2]| toward_by(p, u, inset);
     let mut usv_u = Vec::with_capacity(kk);
     let mut q = [problem.start.usv[0], problem.start.usv[1], 0.0];
     let mut clipped = false;
     for _ in 0..kk {
-        let v = toward(q, u);
+        let v = toward_by(q, u, inset + radius);
         clipped |= (v[0] - u[0]).hypot(v[1] - u[1]) > 1e-6 * speed.max(1e-9);
         q = [q[0] + v[0] * dt, q[1] + v[1] * dt, 0.0];
         usv_u.push(v);
@@ -130,6 +151,18 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
     // the envelope: the depth rating, and the flight-path angle's share of the horizontal speed
     let deepest = -s.auv.max_depth + 1.0;
     let slope = super::climb::rule(problem).slope() * (1.0 - GUESS_SPEED_MARGIN);
+    // C1_14: an AUV whose velocity has a heading turns towards the formation's by at most
+    // `TURN_SHARE` of ψ̇_max·δ a step (with a cruise floor it cannot stop to turn: a team that
+    // reverses at the grid's edge flies a turn of v/ψ̇_max radius, not a pivot)
+    let turn = TurnLimit {
+        angle: TURN_SHARE * s.auv.max_heading_rate * dt,
+        v_min: s.auv.min_heading_speed,
+    };
+    let cruise = super::cruise::rule(problem);
+    let floor = cruise
+        .on()
+        .then(|| cruise.waypoint_floor() * GUESS_FLOOR)
+        .unwrap_or(0.0);
     let auv_u = problem
         .start
         .auvs
@@ -152,7 +185,7 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
                         .min(slope * h[0].hypot(h[1]));
                     // through the water: the formation's velocity over ground less the current
                     let c = problem.drift(p);
-                    let w = [h[0] - c[0], h[1] - c[1]];
+                    let w = turned([h[0] - c[0], h[1] - c[1]], [v[0], v[1]], turn, floor);
                     let room = room.min(slope * w[0].hypot(w[1]));
                     let target = [w[0], w[1], ((z - p[2]) / dt).clamp(-room, room)];
                     // deadbeat velocity: V[k+1] = vv·V[k] + vu·U[k] = target
@@ -175,6 +208,68 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
         &|p| problem.drift(p),
     );
     (t, clipped)
+}
+
+/// With a cruise floor, the radius (m) of the turn an AUV of the first guess flies at the
+/// floor's waypoint speed, `TURN_SHARE` of ψ̇_max·δ a step: the room a window leaves it
+/// inside the grid at its end (`bounds::terminal`), so that the next window can turn the
+/// team round at the edge. None without a cruise floor (an AUV slows below v_min and pivots).
+pub(super) fn turn_radius(problem: &TeamProblem) -> Option<f64> {
+    let cruise = super::cruise::rule(problem);
+    let s = problem.scenario;
+    (cruise.on() && s.auv.max_heading_rate > 0.0).then(|| {
+        let angle = TURN_SHARE * s.auv.max_heading_rate * s.horizon.dt;
+        // a polygon of steps v·δ turning by `angle` at each vertex: its circumradius
+        let step = cruise.waypoint_floor() * GUESS_FLOOR * s.horizon.dt;
+        step / (2.0 * (0.5 * angle.min(std::f64::consts::PI)).sin())
+    })
+}
+
+/// `q` (a coordinate reached from `p`) held within [lo, hi] where it moves outwards of it, so
+/// that a vehicle already outside (a window that starts within the margin) is not pulled
+/// across; [lo, hi] empty (a grid narrower than twice the inset) leaves `q`.
+fn inset_clamp(q: f64, p: f64, lo: f64, hi: f64) -> f64 {
+    if lo > hi {
+        return q;
+    }
+    if q > hi && q > p {
+        hi.max(p)
+    } else if q < lo && q < p {
+        lo.min(p)
+    } else {
+        q
+    }
+}
+
+/// Share of ψ̇_max·δ by which an AUV of the guess turns a step, at most.
+const TURN_SHARE: f64 = 0.9;
+
+/// How far a velocity of the guess may turn in a step (C1_14) and the speed below which it has
+/// no heading.
+#[derive(Clone, Copy)]
+struct TurnLimit {
+    angle: f64,
+    v_min: f64,
+}
+
+/// The horizontal velocity through the water `want`, turned towards from the previous one
+/// `was` by at most `turn.angle` when both have a heading, at no less than `floor` m/s (the
+/// cruise floor's waypoint speed, or 0): the speed of `want`, on the heading `was` can reach.
+fn turned(want: [f64; 2], was: [f64; 2], turn: TurnLimit, floor: f64) -> [f64; 2] {
+    let speed = want[0].hypot(want[1]);
+    if was[0].hypot(was[1]) < turn.v_min || speed < turn.v_min {
+        return want;
+    }
+    let from = was[1].atan2(was[0]);
+    let mut delta = want[1].atan2(want[0]) - from;
+    delta = (delta + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+    if delta.abs() <= turn.angle {
+        return want;
+    }
+    // turning, at the cruise floor (the tightest turn), or at its own speed without one
+    let heading = from + delta.clamp(-turn.angle, turn.angle);
+    let speed = if floor > 0.0 { floor } else { speed };
+    [speed * heading.cos(), speed * heading.sin()]
 }
 
 #[cfg(test)]
