@@ -416,6 +416,21 @@ where
                     solve_time_s: start.elapsed().as_secs_f64(),
                 });
             }
+            if candidate_eval.feasible(tol) && phi_cand < phi_ref {
+                // the model promised nothing (its linearised rows keep a slack the true
+                // constraints do not need), yet its solution is feasible and better than an
+                // infeasible reference: take it, and go on from there (the default scenario, 3
+                // windows, seed 5: Step 1 of window 1 raised λ to 10⁷ against a feasible
+                // candidate and gave up with two AUVs 1.58 m apart)
+                record.accepted = true;
+                problem.judged(&candidate, true);
+                observer(&record);
+                previous = Some(std::mem::replace(&mut reference, candidate));
+                reference_eval = candidate_eval;
+                have_feasible_reference = true;
+                keep_if_best(&mut best, &reference, reference_eval, tol);
+                continue;
+            }
             observer(&record);
             if penalty < settings.penalty * PENALTY_MAX_FACTOR {
                 penalty *= PENALTY_GROWTH;
