@@ -329,7 +329,11 @@ fn regression_the_origin_seafloor_info_suggests_is_one_plan_accepts() {
         strips(TiffCompression::None),
     );
     let [x, y] = suggested_origin(&f);
-    let mut s = small(&f, &["auv.max_speed=0.5", "usv.max_speed=0.3"]);
+    let mut s = small(
+        &f,
+        // a slow vehicle: no cruise floor
+        &["auv.max_speed=0.5", "auv.min_speed=0", "usv.max_speed=0.3"],
+    );
     s.initial = Some(scenario::Initial {
         usv: [x, y],
         auvs: Vec::new(),

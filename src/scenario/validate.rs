@@ -324,8 +324,10 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     c.float(
         "auv.level_speed",
         v.level_speed,
-        v.level_speed >= 0.0 && v.level_speed < v.max_speed,
-        "must be a number of m/s with 0 ≤ value < auv.max_speed",
+        // only the climb line reads it, and only with a cruise floor
+        v.level_speed >= 0.0 && (v.min_speed == 0.0 || v.level_speed < v.max_speed),
+        "must be a number of m/s with 0 ≤ value < auv.max_speed (with a cruise floor, \
+         auv.min_speed > 0)",
     );
     c.float(
         "auv.climb_per_speed",
@@ -338,7 +340,8 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
         v.min_speed,
         v.min_speed == 0.0 || (v.min_speed >= v.min_heading_speed && v.min_speed < v.max_speed),
         format!(
-            "must be 0 (no cruise floor) or a number of m/s with auv.min_heading_speed = {} ≤ \
+            "must be 0 (no cruise floor: a vehicle that holds depth at any speed, such as a \
+             glider or a hovering AUV) or a number of m/s with auv.min_heading_speed = {} ≤ \
              value < auv.max_speed = {}",
             num(v.min_heading_speed),
             num(v.max_speed)

@@ -194,7 +194,12 @@ pub fn utm_survey_scenario(dir: &Path) -> shoal::scenario::Scenario {
         TiffLayout::Tiles { size: 16 },
     );
     let (cx, cy) = (l.x0 + 400.0, l.y0 + 375.0);
-    let mut s = small(&utm, &["auv.max_speed=0.5", "usv.max_speed=0.3"]);
+    let mut s = small(
+        &utm,
+        // a slow vehicle on a small grid: no cruise floor (a REMUS at 1.25 m/s would not fit
+        // its 250 m turn on this 800 m survey)
+        &["auv.max_speed=0.5", "auv.min_speed=0", "usv.max_speed=0.3"],
+    );
     s.initial = Some(shoal::scenario::Initial {
         usv: [cx, cy],
         auvs: vec![[cx + 40.0, cy, -60.0], [cx, cy + 50.0, -60.0]],
