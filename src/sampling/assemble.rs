@@ -5,8 +5,8 @@
 //! objective is P2's at those paths. Step 2's graph is P3's A2U link (the AUV nearest the USV)
 //! and the sampled chain as the A2A path at k = 1..=K; at k = 0, the fixed start, the chain
 //! [`validity::find_chain`] finds, or P4's path where there is none in range. The links' bands
-//! are the paper's [d_s − d_t, d_s]; a sampled link shorter than d_s − d_t is listed out of its
-//! band, as the MPC's are.
+//! are P5's [ρ·d_s − d_t, ρ·d_s] (the paper's with ρ = `acoustic.link_margin` = 1); a sampled
+//! link shorter than ρ·d_s − d_t is listed out of its band, as the MPC's are.
 
 use super::validity::{self, Limits};
 use crate::error::PlanError;
@@ -62,7 +62,9 @@ pub fn window(s: &Scenario, floor: &Seafloor, w: Sampled) -> Result<Window, Plan
         scp: Vec::new(),
     };
     let graph = graph(s, floor, t, w.chains);
-    let set = LinkSet::from_graph(&graph, s.acoustic.sonar_range, s.acoustic.band_tolerance);
+    // the bands top at ρ·d_s, as P5's (`acoustic.link_margin`)
+    let top = s.acoustic.link_margin * s.acoustic.sonar_range;
+    let set = LinkSet::from_graph(&graph, top, s.acoustic.band_tolerance);
     let out_of_band = crate::step3::out_of_band(&set, t);
     let links = LinkReport {
         links: set.links,

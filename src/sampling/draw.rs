@@ -107,9 +107,9 @@ pub fn auv_step<R: Rng>(
     Ok(AuvStep { u, p, v })
 }
 
-/// Draw one AUV step from (p0, v0) whose waypoint lies within d_s of `to` (the next link's
-/// other end): the waypoint uniform on the horizontal disc of radius d_s about `to` and in the
-/// water column there within d_s of it, the velocity and input the model needs to reach it
+/// Draw one AUV step from (p0, v0) whose waypoint lies within ρ·d_s of `to` (the next link's
+/// other end): the waypoint uniform on the horizontal disc of radius ρ·d_s about `to` and in
+/// the water column there within ρ·d_s of it, the velocity and input the model needs to reach it
 /// (the inverse of the map of [`auv_step`]). The step may break the speed or heading limit;
 /// the caller tests it. Half the tree's draws are these (ours; docs/baseline.md measures
 /// what they buy: little at the default tree).
@@ -122,11 +122,11 @@ pub fn auv_step_towards<R: Rng>(
     v0: [f64; 3],
     to: [f64; 3],
 ) -> Result<AuvStep, Reject> {
-    let r = l.sonar_range * rng.gen::<f64>().sqrt();
+    let r = l.link_range * rng.gen::<f64>().sqrt();
     let a = rng.gen_range(-PI..PI);
     let (x, y) = (to[0] + r * a.cos(), to[1] + r * a.sin());
     let z_floor = floor.elevation(x, y).map_err(|_| Reject::Grid)?;
-    let half = (l.sonar_range.powi(2) - r * r).max(0.0).sqrt() * INSIDE;
+    let half = (l.link_range.powi(2) - r * r).max(0.0).sqrt() * INSIDE;
     let lo = (z_floor + l.floor_clearance + 1e-9).max(to[2] - half);
     let hi = (-l.surface_clearance - 1e-9).min(to[2] + half);
     if lo.partial_cmp(&hi).map_or(true, |o| o.is_gt()) {

@@ -72,7 +72,7 @@ impl Reject {
             Reject::MaxRange => "C1_5 range ≤ d_max",
             Reject::Terminal => "C1_6 sonar range at k = K",
             Reject::Unreachable => "C1_6 unreachable by k = K",
-            Reject::LinkRange => "chain link within d_s",
+            Reject::LinkRange => "chain link within ρ·d_s",
             Reject::LineOfSight => "C1_13 line of sight",
         }
     }
@@ -99,6 +99,8 @@ pub struct Limits {
     pub surface_clearance: f64,
     /// d_s, m.
     pub sonar_range: f64,
+    /// The longest link, ρ·d_s (`acoustic.link_margin`), m: links planned to be heard, as P5's.
+    pub link_range: f64,
     /// d_max, m.
     pub max_range: f64,
     /// r of 𝓛_r, m.
@@ -118,6 +120,7 @@ impl Limits {
             floor_clearance: s.auv.floor_clearance,
             surface_clearance: s.auv.surface_clearance,
             sonar_range: s.acoustic.sonar_range,
+            link_range: s.acoustic.link_margin * s.acoustic.sonar_range,
             max_range: s.acoustic.max_range,
             resolution: s.acoustic.resolution,
         }
@@ -216,10 +219,10 @@ pub fn usv_step(l: &Limits, floor: &Seafloor, a: [f64; 2], b: [f64; 2]) -> Resul
     clear_of_obstacles(l, floor, surface(a), surface(b))
 }
 
-/// An acoustic link a–b: within d_s, in line of sight over the floor (every sample of 𝓛_r at
+/// An acoustic link a–b: within ρ·d_s, in line of sight over the floor (every sample of 𝓛_r at
 /// or above it) and over no obstacle cell.
 pub fn link(l: &Limits, floor: &Seafloor, a: [f64; 3], b: [f64; 3]) -> Result<(), Reject> {
-    if dist(a, b) > l.sonar_range {
+    if dist(a, b) > l.link_range {
         return Err(Reject::LinkRange);
     }
     clear_of_obstacles(l, floor, a, b)?;
