@@ -57,6 +57,12 @@ impl Draw {
         s.acoustic.band_tolerance = 0.2 * ds;
         s.acoustic.max_range = s.acoustic.max_range.max(2.0 * ds);
         (s.auv.max_speed, s.usv.max_speed) = (self.auv_speed, self.usv_speed);
+        // the draws are vehicles of every kind (gliders at 0.2 m/s behind a USV at 3 m/s,
+        // horizons of 10 s steps on 5 km grids): vehicles that can slow down and turn on the
+        // spot, so no REMUS cruise floor (its 1.25 m/s and ψ̇_max turn the team on a 250 m
+        // radius, which a USV slower than the AUVs or a few steps of 10 s leave no room for);
+        // the REMUS envelope's own missions are the flown study's (tests/flown_study.rs)
+        s.auv.min_speed = 0.0;
         s.seafloor.synthetic.seamounts = self.seamounts;
         s.seafloor.synthetic.valleys = self.valleys;
         s
@@ -119,6 +125,12 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
     s.usv.objective = shoal::scenario::UsvObjective::Destination;
     s.usv.destination = [0.0, 0.0];
     s.weights.w2 = 5e-3;
+    // the paper's vehicle, in still water: no cruise floor, a vertical descent allowed (AUVs
+    // that sink at rest), rated below the 140 m floor, no current to hold against
+    s.auv.min_speed = 0.0;
+    s.auv.max_flight_path_angle = 1.5;
+    s.auv.max_depth = 200.0;
+    s.current.velocity = [0.0; 2];
     s.initial = Some(shoal::scenario::Initial {
         usv: [0.0, 0.0],
         auvs: vec![[30.0, 0.0, -60.0], [-20.0, 40.0, -70.0]],
@@ -341,6 +353,8 @@ fn regression_slow_auvs_behind_a_fast_usv_plan() {
         let mut s = Scenario::default();
         s.auv.max_speed = auv;
         s.usv.max_speed = usv;
+        // slow AUVs are not REMUSes: no cruise floor
+        s.auv.min_speed = 0.0;
         let (f, source) = scenario_floor(&s, std::path::Path::new(".")).unwrap();
         let p = plan_on(&s, &f, source);
         let r = check_plan(&p, &f);
