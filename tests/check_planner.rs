@@ -263,6 +263,8 @@ mod random {
             let mut s = Scenario { seed, windows, ..Scenario::default() };
             s.auv.max_speed = auv_speed;
             s.usv.max_speed = usv_speed;
+            // vehicles of every speed: no REMUS cruise floor (see `Draw::scenario`)
+            s.auv.min_speed = 0.0;
             s.team.auvs = auvs;
             s.horizon.steps = steps;
             s.horizon.dt = dt;
