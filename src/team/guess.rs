@@ -70,11 +70,13 @@ pub(super) fn initial_guess(problem: &TeamProblem, previous_heading: Option<f64>
         0 => vec![1.0],
         _ => SPEED_FRACTIONS.iter().filter(cruising).copied().collect(),
     };
+    // with a cruise floor the team turns from the last window's course as its AUVs can
+    let from = previous_heading.filter(|_| floor.on());
     let best = |dir: f64| {
         fractions
             .iter()
             .map(|f| {
-                let (t, clipped) = formation(problem, dir, f * speed);
+                let (t, clipped) = formation(problem, dir, f * speed, from);
                 (problem.evaluate(&t).objective, t, clipped)
             })
             .min_by(|a, b| a.0.total_cmp(&b.0))
@@ -99,11 +101,25 @@ const TURNS: usize = 8;
 
 /// The formation guess with the USV at `speed` along `dir` (see `initial_guess`), and whether
 /// the grid's edge stopped its USV short of that course.
-fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) {
+///
+/// `from`, the course the team held at the end of the last window when it cannot pivot (a
+/// cruise floor): the USV's course turns from it towards `dir` at the rate its AUVs turn
+/// (`TURN_SHARE` of ψ̇_max), so that the team turns together rather than the USV leaving its
+/// AUVs on the outside of a 280 m turn (the default scenario, 3 windows, seeds 2, 5 and 6:
+/// "the acoustic chain breaks at window 1, step 3").
+fn formation(problem: &TeamProblem, dir: f64, speed: f64, from: Option<f64>) -> (Trajectory, bool) {
     let s = problem.scenario;
     let (kk, nn) = (problem.layout.k, problem.layout.n);
     let dt = s.horizon.dt;
-    let u = [speed * dir.cos(), speed * dir.sin()];
+    let course = |k: usize| match from {
+        Some(h0) => {
+            let turn = TURN_SHARE * s.auv.max_heading_rate * dt * (k + 1) as f64;
+            let delta = (dir - h0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
+            h0 + delta.clamp(-turn, turn)
+        }
+        None => dir,
+    };
     // at the grid's edge the guess stops (the plan may not leave the known map), short of it
     // by the terminal margin's room in a window that another follows
     // (the USV's course by that and the formation's radius more, so that the formation does
@@ -133,7 +149,9 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
     let mut usv_u = Vec::with_capacity(kk);
     let mut q = [problem.start.usv[0], problem.start.usv[1], 0.0];
     let mut clipped = false;
-    for _ in 0..kk {
+    for k in 0..kk {
+        let c = course(k);
+        let u = [speed * c.cos(), speed * c.sin()];
         let v = toward_by(q, u, inset + radius);
         clipped |= (v[0] - u[0]).hypot(v[1] - u[1]) > 1e-6 * speed.max(1e-9);
         q = [q[0] + v[0] * dt, q[1] + v[1] * dt, 0.0];
@@ -151,14 +169,20 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64) -> (Trajectory, bool) 
     // the envelope: the depth rating, and the flight-path angle's share of the horizontal speed
     let deepest = -s.auv.max_depth + 1.0;
     let slope = super::climb::rule(problem).slope() * (1.0 - GUESS_SPEED_MARGIN);
-    // C1_14: an AUV whose velocity has a heading turns towards the formation's by at most
-    // `TURN_SHARE` of ψ̇_max·δ a step (with a cruise floor it cannot stop to turn: a team that
-    // reverses at the grid's edge flies a turn of v/ψ̇_max radius, not a pivot)
+    // C1_14 with a cruise floor: an AUV whose velocity has a heading turns towards the
+    // formation's by at most `TURN_SHARE` of ψ̇_max·δ a step (it cannot stop to turn: a team
+    // that reverses at the grid's edge flies a turn of v/ψ̇_max radius, not a pivot). Without
+    // one the guess goes straight to the formation's velocity, as the model can slow it below
+    // v_min and pivot
+    let cruise = super::cruise::rule(problem);
     let turn = TurnLimit {
-        angle: TURN_SHARE * s.auv.max_heading_rate * dt,
+        angle: if cruise.on() {
+            TURN_SHARE * s.auv.max_heading_rate * dt
+        } else {
+            f64::INFINITY
+        },
         v_min: s.auv.min_heading_speed,
     };
-    let cruise = super::cruise::rule(problem);
     let floor = cruise
         .on()
         .then(|| cruise.waypoint_floor() * GUESS_FLOOR)
@@ -312,7 +336,7 @@ mod tests {
             .usv
             .max_speed
             .min(super::FORMATION_SHARE * s.auv.max_speed);
-        let straight = super::formation(&p, s.usv.initial_heading, top).0;
+        let straight = super::formation(&p, s.usv.initial_heading, top, None).0;
         (run(&p.initial_guess(None)), run(&straight))
     }
 
