@@ -1032,6 +1032,10 @@ impl Report {
                 },
                 stage.solve_time_s
             )),
+            Progress::Retry { window, turn, why } => self.line(format!(
+                "  window {window}: {why}; planned again from a first guess turned {:+.0}°",
+                turn.to_degrees()
+            )),
             Progress::Step2 { window, graph } => self.line(format!(
                 "  window {window}: step 2 (P3 + P4) {} graph in {:.4} s",
                 if graph.exact { "exact" } else { "heuristic" },

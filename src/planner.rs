@@ -56,6 +56,15 @@ pub enum Progress<'a> {
         /// The acoustic graph of every step.
         graph: &'a Graph,
     },
+    /// A window failed from one first guess and is planned again from another.
+    Retry {
+        /// The window (0-based).
+        window: usize,
+        /// The next first guess's course turn, rad.
+        turn: f64,
+        /// Why the window failed.
+        why: &'a PlanError,
+    },
     /// Step 3 has ended.
     Step3 {
         /// The window (0-based).
@@ -323,106 +332,200 @@ fn run(
     let mut track: Vec<[f64; 2]> = Vec::new();
     for w in 0..s.windows {
         check_start(s, floor, keep_out, &start, w)?;
-        // Step 1 (P2), line 9
-        let clock = Instant::now();
-        let p2 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone());
-        // another window follows: the terminal margin, if the scenario asks for it
-        let more = s.horizon.terminal_margin && w + 1 < s.windows;
-        let mut p2 = p2.with_track(&track).with_terminal(more);
-        let mut trace = Vec::new();
-        let (out1, courses) = step1::solve(&mut p2, heading, &mut |it| {
-            trace.push(iteration_record(it));
-            progress(Progress::Iteration {
-                window: w,
-                step: 1,
-                iteration: trace.last().expect("just pushed"),
-            });
-        })?;
-        let step1 = stage_record(&p2, &out1, trace, clock.elapsed().as_secs_f64());
-        progress(Progress::Step1 {
-            window: w,
-            stage: &step1,
-            courses: &courses,
-        });
-        // Step 2 (P3, P4), lines 13–16
-        let graph = step2::solve(
-            &out1.iterate,
-            floor,
-            s.acoustic.resolution,
-            s.acoustic.sonar_range,
-            s.acoustic.graph,
-        );
-        progress(Progress::Step2 {
-            window: w,
-            graph: &graph,
-        });
-        // Step 3 (P5) and line of sight, lines 17–22
-        let clock = Instant::now();
-        // the band tops at ρ·d_s (`acoustic.link_margin`): links planned to be heard
-        let top = s.acoustic.link_margin * s.acoustic.sonar_range;
-        let links = LinkSet::from_graph(&graph, top, s.acoustic.band_tolerance);
-        let p5 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone())
-            .with_links(links)
-            .with_lanes(&out1.iterate);
-        let mut p5 = p5.with_track(&track).with_terminal(more);
-        let mut trace = Vec::new();
-        let out3 = step3::solve(&mut p5, &out1.iterate, &mut |it| {
-            trace.push(iteration_record(it));
-            progress(Progress::Iteration {
-                window: w,
-                step: 3,
-                iteration: trace.last().expect("just pushed"),
-            });
-        })?;
-        let final_ = stage_record(&p5, &out3.outcome, trace, clock.elapsed().as_secs_f64());
-        let bridges = p5.bridges();
-        progress(Progress::Step3 {
-            window: w,
-            stage: &final_,
-            los_rounds: out3.los_rounds,
-            out_of_band: out3.out_of_band.len(),
-            bridges: bridges.len(),
-        });
-        track.extend_from_slice(&out3.outcome.iterate.usv_p);
-        (start, heading) = next_window(&out3.outcome.iterate, heading); // line 7
-        let report = LinkReport {
-            links: out3.links.links,
-            bands: out3.links.bands,
-            out_of_band: out3.out_of_band,
-            los_rounds: out3.los_rounds,
-            bridges,
+        let mut first_error = None;
+        let mut tries = GUESS_TURNS.iter().peekable();
+        let planned = loop {
+            let turn = *tries.next().expect("at least one course");
+            let ctx = WindowContext {
+                s,
+                floor,
+                keep_out,
+                auv,
+                usv,
+                start: &start,
+                heading,
+                track: &track,
+            };
+            match plan_window(&ctx, w, turn, progress) {
+                Ok(planned) => break planned,
+                Err(e) if retried(&e) && tries.peek().is_some() => {
+                    let next = **tries.peek().expect("peeked");
+                    progress(Progress::Retry {
+                        window: w,
+                        turn: next,
+                        why: &e,
+                    });
+                    first_error.get_or_insert(e);
+                }
+                // the error of the course the window would take, the one a user can act on
+                Err(e) => return Err(first_error.unwrap_or(e)),
+            }
         };
-        let times = [step1.solve_time_s, graph.solve_time_s, final_.solve_time_s];
-        let params = metric_params(s);
-        if let Some((k, n)) = first_cut_off(&final_, floor, &params) {
-            let p = final_.auvs[n].position[k];
-            return Err(PlanError::Disconnected {
-                window: w,
-                k,
-                why: format!(
-                    "AUV {n} at ({:.1}, {:.1}, {:.1}) reaches the USV through no chain of links \
-                     within d_s = {} m with line of sight",
-                    p[0], p[1], p[2], s.acoustic.sonar_range
-                ),
-            });
-        }
-        let metrics = window_metrics(&final_, &report.links, floor, &params, times);
-        windows.push(Window {
-            index: w,
-            start_time: w as f64 * s.horizon.steps as f64 * s.horizon.dt,
-            courses,
-            step1,
-            graph,
-            final_,
-            links: report,
-            metrics,
-            sampling: None,
-        });
+        track.extend_from_slice(&planned.path);
+        (start, heading) = planned.next;
+        windows.push(planned.window);
         if w + 1 < s.windows && stop.is_some_and(|f| f.load(Ordering::SeqCst)) {
             return Ok(cut_short(setup, s, floor, provenance, windows));
         }
     }
     Ok(setup.plan(s, floor, provenance, METHOD_MPC, windows))
+}
+
+/// The first-guess course turns (rad) a window is planned from, in order: the course it would
+/// take, then a quarter turn to either side. A window fails from one course and plans from
+/// another where its first guess led the SCP into a corner it could not leave (a team with a
+/// cruise floor turning at a grid's corner: the default scenario, 5 windows, seed 2, broke
+/// its chain at window 2, step 2).
+const GUESS_TURNS: [f64; 4] = [
+    0.0,
+    std::f64::consts::FRAC_PI_2,
+    -std::f64::consts::FRAC_PI_2,
+    std::f64::consts::PI,
+];
+
+/// Whether a window's failure is one another first guess may avoid: a constraint the SCP left
+/// violated, a convex model with no feasible point, or a chain broken in the final plan.
+fn retried(e: &PlanError) -> bool {
+    matches!(
+        e,
+        PlanError::Infeasible { .. }
+            | PlanError::ConvexInfeasible { .. }
+            | PlanError::Disconnected { .. }
+    )
+}
+
+/// What a window is planned from (see `run`).
+struct WindowContext<'a> {
+    s: &'a Scenario,
+    floor: &'a Seafloor,
+    keep_out: &'a Seafloor,
+    auv: AuvModel,
+    usv: UsvModel,
+    start: &'a Start,
+    heading: Option<f64>,
+    track: &'a [[f64; 2]],
+}
+
+/// A planned window, the USV's path over it and the next window's start and heading.
+struct WindowPlan {
+    window: Window,
+    path: Vec<[f64; 2]>,
+    next: (Start, Option<f64>),
+}
+
+/// Steps 1–3 of window `w` from `ctx`, its first guess's course turned by `turn`.
+fn plan_window(
+    ctx: &WindowContext,
+    w: usize,
+    turn: f64,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<WindowPlan, PlanError> {
+    let WindowContext {
+        s,
+        floor,
+        keep_out,
+        auv,
+        usv,
+        start,
+        heading,
+        track,
+    } = *ctx;
+    // Step 1 (P2), line 9
+    let clock = Instant::now();
+    let p2 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone()).with_guess_turn(turn);
+    // another window follows: the terminal margin, if the scenario asks for it
+    let more = s.horizon.terminal_margin && w + 1 < s.windows;
+    let mut p2 = p2.with_track(&track).with_terminal(more);
+    let mut trace = Vec::new();
+    let (out1, courses) = step1::solve(&mut p2, heading, &mut |it| {
+        trace.push(iteration_record(it));
+        progress(Progress::Iteration {
+            window: w,
+            step: 1,
+            iteration: trace.last().expect("just pushed"),
+        });
+    })?;
+    let step1 = stage_record(&p2, &out1, trace, clock.elapsed().as_secs_f64());
+    progress(Progress::Step1 {
+        window: w,
+        stage: &step1,
+        courses: &courses,
+    });
+    // Step 2 (P3, P4), lines 13–16
+    let graph = step2::solve(
+        &out1.iterate,
+        floor,
+        s.acoustic.resolution,
+        s.acoustic.sonar_range,
+        s.acoustic.graph,
+    );
+    progress(Progress::Step2 {
+        window: w,
+        graph: &graph,
+    });
+    // Step 3 (P5) and line of sight, lines 17–22
+    let clock = Instant::now();
+    // the band tops at ρ·d_s (`acoustic.link_margin`): links planned to be heard
+    let top = s.acoustic.link_margin * s.acoustic.sonar_range;
+    let links = LinkSet::from_graph(&graph, top, s.acoustic.band_tolerance);
+    let p5 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone())
+        .with_links(links)
+        .with_lanes(&out1.iterate);
+    let mut p5 = p5.with_track(&track).with_terminal(more);
+    let mut trace = Vec::new();
+    let out3 = step3::solve(&mut p5, &out1.iterate, &mut |it| {
+        trace.push(iteration_record(it));
+        progress(Progress::Iteration {
+            window: w,
+            step: 3,
+            iteration: trace.last().expect("just pushed"),
+        });
+    })?;
+    let final_ = stage_record(&p5, &out3.outcome, trace, clock.elapsed().as_secs_f64());
+    let bridges = p5.bridges();
+    progress(Progress::Step3 {
+        window: w,
+        stage: &final_,
+        los_rounds: out3.los_rounds,
+        out_of_band: out3.out_of_band.len(),
+        bridges: bridges.len(),
+    });
+    let path = out3.outcome.iterate.usv_p.clone();
+    let next = next_window(&out3.outcome.iterate, heading); // line 7
+    let report = LinkReport {
+        links: out3.links.links,
+        bands: out3.links.bands,
+        out_of_band: out3.out_of_band,
+        los_rounds: out3.los_rounds,
+        bridges,
+    };
+    let times = [step1.solve_time_s, graph.solve_time_s, final_.solve_time_s];
+    let params = metric_params(s);
+    if let Some((k, n)) = first_cut_off(&final_, floor, &params) {
+        let p = final_.auvs[n].position[k];
+        return Err(PlanError::Disconnected {
+            window: w,
+            k,
+            why: format!(
+                "AUV {n} at ({:.1}, {:.1}, {:.1}) reaches the USV through no chain of links \
+                 within d_s = {} m with line of sight",
+                p[0], p[1], p[2], s.acoustic.sonar_range
+            ),
+        });
+    }
+    let metrics = window_metrics(&final_, &report.links, floor, &params, times);
+    let window = Window {
+        index: w,
+        start_time: w as f64 * s.horizon.steps as f64 * s.horizon.dt,
+        courses,
+        step1,
+        graph,
+        final_,
+        links: report,
+        metrics,
+        sampling: None,
+    };
+    Ok(WindowPlan { window, path, next })
 }
 
 /// The plan of the first `windows` of a mission stopped by the user: the scenario it records

@@ -62,6 +62,7 @@ pub(super) fn initial_guess(problem: &TeamProblem, previous_heading: Option<f64>
         }
         UsvObjective::Away => (previous_heading.unwrap_or(s.usv.initial_heading), top),
     };
+    let dir = dir + problem.guess_turn;
     // the USV's speed: the fraction of `speed` whose formation has the least objective
     // with a cruise floor, only the fractions at which the AUVs keep it (all, if none does)
     let floor = super::cruise::rule(problem);
@@ -83,7 +84,8 @@ pub(super) fn initial_guess(problem: &TeamProblem, previous_heading: Option<f64>
             .expect("at least one fraction")
     };
     let ahead = best(dir);
-    if !(s.usv.objective == UsvObjective::Away && ahead.2) {
+    // (a window planned again from a turned course takes that course)
+    if !(s.usv.objective == UsvObjective::Away && ahead.2) || problem.guess_turn != 0.0 {
         return ahead.1;
     }
     // a window that starts at the grid's edge heading out: the course of least objective

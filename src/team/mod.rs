@@ -102,6 +102,9 @@ pub struct TeamProblem<'a> {
     least: Vec<Vec<f64>>,
     /// The terminal margin (`bounds`): a window that another follows.
     terminal: bool,
+    /// The angle (rad) by which the first guess turns the USV's course from the one it would
+    /// take (`guess::initial_guess`): 0 but for a window planned again (`with_guess_turn`).
+    guess_turn: f64,
     /// The points OF1_8 ("away") measures from: the USV's earlier path, then this window's
     /// start (only the start unless `with_track`).
     track: Vec<[f64; 2]>,
@@ -157,6 +160,7 @@ impl<'a> TeamProblem<'a> {
             lanes: None,
             least: Vec::new(),
             terminal: false,
+            guess_turn: 0.0,
             forced: vec![Vec::new(); layout.n * layout.k],
             kept: 0.0,
             solver: None,
@@ -265,6 +269,13 @@ impl<'a> TeamProblem<'a> {
     /// first step.
     pub fn with_terminal(mut self, terminal: bool) -> TeamProblem<'a> {
         self.terminal = terminal;
+        self
+    }
+
+    /// The same window with its first guess's course turned by `turn` radians (a window
+    /// planned again when the course it would take fails: `planner`'s `GUESS_TURNS`).
+    pub fn with_guess_turn(mut self, turn: f64) -> TeamProblem<'a> {
+        self.guess_turn = turn;
         self
     }
 
