@@ -128,7 +128,7 @@ fn flat_floor_plan_matches_the_closed_form_optimum() {
     // the paper's vehicle, in still water: no cruise floor, a vertical descent allowed (AUVs
     // that sink at rest), rated below the 140 m floor, no current to hold against
     s.auv.min_speed = 0.0;
-    s.auv.max_flight_path_angle = 1.5;
+    s.auv.max_flight_path_angle = shoal::scenario::NO_ANGLE_LIMIT;
     s.auv.max_depth = 200.0;
     s.current.velocity = [0.0; 2];
     s.initial = Some(shoal::scenario::Initial {

@@ -35,6 +35,8 @@ impl Checker<'_> {
         let mut fg = Family::new("flight-path angle", "m/s", SPEED_TOL);
         let mut fc = Family::new("cruise floor", "m/s", SPEED_TOL);
         let auv = &self.limits.auv;
+        // from NO_ANGLE_LIMIT on, no angle limit (a vehicle that moves vertically at rest)
+        let limited = auv.max_flight_path_angle < crate::scenario::NO_ANGLE_LIMIT;
         let slope = auv.max_flight_path_angle.tan();
         let floor = auv.min_speed;
         for (w, pre, _, n, a) in self.auv_paths() {
@@ -53,7 +55,16 @@ impl Checker<'_> {
                 } else {
                     f64::INFINITY // the window's start: at rest, or the last window's end
                 };
-                fg.record((slope * h - v[2].abs()).min(climb), || {
+                let angle_margin = if limited {
+                    slope * h - v[2].abs()
+                } else {
+                    f64::INFINITY
+                };
+                let margin = angle_margin.min(climb);
+                if margin == f64::INFINITY {
+                    continue; // neither the angle nor the climb line applies here
+                }
+                fg.record(margin, || {
                     let angle = v[2].atan2(h).to_degrees();
                     at(
                         w,

@@ -335,6 +335,11 @@ pub enum W8Scaling {
 /// K₀, the steps of the paper's window (Section V), for `weights.w8_scaling = "energy"`.
 pub const REFERENCE_STEPS: f64 = 20.0;
 
+/// `auv.max_flight_path_angle` at or above which there is no angle limit (1.57 rad, 89.95°, up
+/// to π/2 rounded to 1.5708): a vehicle that moves vertically at rest (a hovering AUV, the
+/// paper's model).
+pub const NO_ANGLE_LIMIT: f64 = 1.57;
+
 /// The default ρ of `acoustic.link_margin` (docs/simulation.md, "Links planned to be heard",
 /// has the flown study that chose it).
 pub const LINK_MARGIN: f64 = 0.8;

@@ -248,7 +248,11 @@ pub const TABLE: &[Plausible] = &[
         high: Some(0.6),
         usual: "a REMUS's pitch of about ±15–20° (0.26–0.35 rad)",
         slips: &[DEGREES],
-        value: |s| s.auv.max_flight_path_angle,
+        // (from NO_ANGLE_LIMIT on the value means no limit, which is no slip)
+        value: |s| match s.auv.max_flight_path_angle {
+            a if a >= super::NO_ANGLE_LIMIT => 0.0,
+            a => a,
+        },
         aside: Some(|v| format!("{:.0}°", v / DEG)),
         effect: None,
     },

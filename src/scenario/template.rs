@@ -94,7 +94,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
         "auv.max_flight_path_angle" => {
             "γ_max, rad: the AUVs' flight-path angle through the water stays within it, \
              |V_z| ≤ tan(γ_max)·‖V_h‖ (ours; the paper has none). Default 0.3 rad (17°): a \
-             REMUS keeps its pitch within about ±15–20° (Prestero 2001). 0 < value < π/2."
+             REMUS keeps its pitch within about ±15–20° (Prestero 2001). 0 < value ≤ 1.5708; \
+             1.57 or more: no limit (a hovering vehicle, as the paper's)."
         }
         "auv.level_speed" => {
             "The slowest horizontal speed through the water, m/s, at which the AUV holds its \

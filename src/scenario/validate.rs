@@ -318,8 +318,9 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     c.float(
         "auv.max_flight_path_angle",
         v.max_flight_path_angle,
-        v.max_flight_path_angle > 0.0 && v.max_flight_path_angle < std::f64::consts::FRAC_PI_2,
-        "must be an angle in radians with 0 < value < π/2",
+        v.max_flight_path_angle > 0.0 && v.max_flight_path_angle <= 1.5708,
+        "must be an angle in radians with 0 < value ≤ 1.5708 (π/2 rounded; from 1.57 on: no \
+         limit, a vehicle that moves vertically at rest)",
     );
     c.float(
         "auv.level_speed",

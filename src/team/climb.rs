@@ -40,9 +40,19 @@ pub struct ClimbRule {
 }
 
 impl ClimbRule {
-    /// tan(γ_max) as the model holds it (tightened).
+    /// Whether the angle is limited at all (`auv.max_flight_path_angle` below
+    /// [`NO_ANGLE_LIMIT`](crate::scenario::NO_ANGLE_LIMIT)).
+    pub fn limited(&self) -> bool {
+        self.max_angle < crate::scenario::NO_ANGLE_LIMIT
+    }
+
+    /// tan(γ_max) as the model holds it (tightened); infinite without a limit.
     pub fn slope(&self) -> f64 {
-        self.max_angle.tan() * (1.0 - CLIMB_MARGIN)
+        if self.limited() {
+            self.max_angle.tan() * (1.0 - CLIMB_MARGIN)
+        } else {
+            f64::INFINITY
+        }
     }
 
     /// c as the model holds it (tightened).
@@ -54,7 +64,11 @@ impl ClimbRule {
     /// (tightened), the larger: 0 when the rule holds.
     pub fn violation(&self, v: [f64; 3]) -> f64 {
         let h = v[0].hypot(v[1]);
-        let angle = v[2].abs() - self.slope() * h;
+        let angle = if self.limited() {
+            v[2].abs() - self.slope() * h
+        } else {
+            0.0
+        };
         let climb = if self.cruising {
             v[2] - self.climb_slope() * (h - self.level_speed)
         } else {
@@ -66,8 +80,14 @@ impl ClimbRule {
     /// The three rows a·V ≤ b + ν about the unit direction `d`: ±V_z − t·d̂·V_h ≤ ν and
     /// V_z − c·d̂·V_h ≤ −c·v_l + ν, as (coefficients on (V_x, V_y, V_z), b).
     pub fn rows(&self, d: [f64; 2]) -> [([f64; 3], f64); 3] {
+        // without an angle limit its rows are empty (0 ≤ ν), the pattern kept
         let t = self.slope();
         let c = self.climb_slope();
+        let none = ([0.0; 3], 0.0);
+        if !self.limited() {
+            let line = ([-c * d[0], -c * d[1], 1.0], -c * self.level_speed);
+            return [none, none, if self.cruising { line } else { none }];
+        }
         // with the cruise floor off the third row repeats the first
         if !self.cruising {
             let up = ([-t * d[0], -t * d[1], 1.0], 0.0);
