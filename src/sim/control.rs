@@ -214,7 +214,10 @@ impl Controller {
             W_HEADING * W_HEADING * wrap(psi_d - s.eta[5]) - 2.0 * ZETA * W_HEADING * s.nu[5];
         let pitch_acc =
             W_PITCH * W_PITCH * wrap(theta_d - s.eta[4]) - 2.0 * ZETA * W_PITCH * s.nu[4];
-        let surge_acc = K_SPEED * (speed - u);
+        // (the speed loop on the surge through the water, as `speed` is: on the surge over
+        // ground a current along the course left the vehicle that much slower over ground
+        // than planned, and the pull held it T_PULL × 0.3 m/s = 6 m behind its reference)
+        let surge_acc = K_SPEED * (speed - (u - water[0]));
         // each actuator supplies what the desired acceleration lacks beyond what the vehicle
         // does unforced (the hydrodynamic and hydrostatic terms at this state: the Munk
         // moment alone would hold the nose down against a PD loop)
