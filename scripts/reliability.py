@@ -267,7 +267,10 @@ class Harness:
                     f"team.auvs={self.rng.choice([1, 2, 3, 4])}",
                     f"horizon.steps={self.rng.randrange(4, 11)}",
                     f"windows={self.rng.choice([1, 1, 2])}",
-                    f"auv.max_speed={self.rng.choice([0.52, 1.0, 1.5, 2.0])}",
+                    # a REMUS (its cruise floor, 1.25 m/s) or a slow vehicle without one
+                    *self.rng.choice([["auv.max_speed=1.5"], ["auv.max_speed=2.0"],
+                                      ["auv.max_speed=0.52", "auv.min_speed=0"],
+                                      ["auv.max_speed=1.0", "auv.min_speed=0"]]),
                     f"acoustic.sonar_range={self.rng.choice([150, 200, 300])}",
                     f"auv.floor_clearance={self.rng.choice([3, 5, 8])}"]
             args = ["plan", "-q", "--no-plot", "-o", "out"] + [a for x in sets
