@@ -266,6 +266,12 @@ mod tests {
         s.horizon.steps = 4;
         s.horizon.dt = 60.0;
         s.acoustic.los_rounds = 1;
+        // the paper's vehicle in still water: four steps of 60 s leave a REMUS at 1.25 m/s no
+        // room to turn back over the ridge (the rounds of line of sight are this test's subject)
+        s.auv.min_speed = 0.0;
+        s.auv.max_flight_path_angle = crate::scenario::NO_ANGLE_LIMIT;
+        s.auv.min_separation = 0.0;
+        s.current.velocity = [0.0; 2];
         let floor = ridge();
         let field = floor.keep_out();
         let auv = crate::vehicle::AuvModel::new(&s.auv, s.horizon.dt).unwrap();

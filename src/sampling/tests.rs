@@ -119,6 +119,12 @@ fn case(seed: u64, n: usize) -> (Scenario, Start, [f64; 2], Vec<[f64; 3]>) {
     // k = 1 is K, where C1_6 holds every AUV within d_s of the USV: a longer range leaves
     // room for valid steps
     s.acoustic.sonar_range = 300.0;
+    // the paper's vehicle, which the sampler plans for: no cruise floor (with one C1_14 always
+    // applies), no angle limit, no separation, no depth rating to speak of
+    s.auv.min_speed = 0.0;
+    s.auv.max_depth = 1000.0;
+    s.auv.max_flight_path_angle = crate::scenario::NO_ANGLE_LIMIT;
+    s.auv.min_separation = 0.0;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let auv = AuvModel::new(&s.auv, s.horizon.dt).unwrap();
     let l = Limits::of(&s);
@@ -319,8 +325,8 @@ fn find_chain_needs_the_nearest_auv_in_sight_and_a_path_in_range() {
         validity::find_chain(&l, f, [0.0, 0.0], &deep),
         Err(Reject::LinkRange)
     );
-    // a link across the NODATA block is an obstacle
-    let across = [[250.0, 0.0, -40.0], [380.0, 0.0, -40.0]];
+    // a link across the NODATA block is an obstacle (110 m, within ρ·d_s = 120 m)
+    let across = [[260.0, 0.0, -40.0], [370.0, 0.0, -40.0]];
     assert_eq!(
         validity::link(&l, f, across[0], across[1]),
         Err(Reject::Obstacle)

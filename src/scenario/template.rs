@@ -101,7 +101,8 @@ pub(crate) fn doc(key: &str) -> Option<&'static str> {
             "The slowest horizontal speed through the water, m/s, at which the AUV holds its \
              depth in level flight: from step 1 on it climbs at most \
              climb_per_speed·(‖V_h‖ − level_speed) (ours; the paper has none). Default 1.15 m/s: \
-             Prestero's REMUS 100 holds depth down to 1.144 m/s. 0 ≤ value < max_speed."
+             Prestero's REMUS 100 holds depth down to 1.144 m/s. 0 ≤ value ≤ 1000; above min_speed \
+             the climb line takes min_speed."
         }
         "auv.climb_per_speed" => {
             "Climb rate (m/s) the AUV gains per m/s of horizontal speed through the water above \

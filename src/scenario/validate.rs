@@ -325,10 +325,10 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     c.float(
         "auv.level_speed",
         v.level_speed,
-        // only the climb line reads it, and only with a cruise floor
-        v.level_speed >= 0.0 && (v.min_speed == 0.0 || v.level_speed < v.max_speed),
-        "must be a number of m/s with 0 ≤ value < auv.max_speed (with a cruise floor, \
-         auv.min_speed > 0)",
+        // only the climb line reads it, with a cruise floor, as min(level_speed, min_speed)
+        v.level_speed >= 0.0 && v.level_speed <= 1e3,
+        "must be a number of m/s with 0 ≤ value ≤ 1000 (above auv.min_speed the climb line \
+         takes auv.min_speed)",
     );
     c.float(
         "auv.climb_per_speed",

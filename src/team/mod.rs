@@ -488,8 +488,11 @@ impl<'a> TeamProblem<'a> {
     /// would make.
     pub fn first_merit(&mut self, guess: Trajectory) -> Result<f64, PlanError> {
         // one iteration of Step 1's own SCP (its tolerance sets how exactly the model is solved)
+        // (every iterate counts as an end: a probe is scored by its merit, violations priced,
+        // not refused for them; with the cruise floor one iteration rarely meets every row)
         let settings = crate::scenario::Scp {
             max_iterations: 1,
+            feasibility_tol: f64::INFINITY,
             ..self.scenario.scp.step1()
         };
         let out = self.solve_with(guess, settings.clone(), &mut |_| {});
