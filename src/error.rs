@@ -93,6 +93,18 @@ pub enum PlanError {
         /// The constraint, the vehicle, the step and the position.
         detail: String,
     },
+    /// A constraint is still violated when the SCP stops at its iteration limit.
+    #[error("{step}: stopped at its iteration limit ({limit} = {iterations}) with a constraint still violated: {detail}; raise {limit}")]
+    Unfinished {
+        /// The step whose problem it was.
+        step: Step,
+        /// The key that set the limit: scp.max_iterations or scp.step1_max_iterations.
+        limit: String,
+        /// The iterations made.
+        iterations: usize,
+        /// The constraint, the vehicle, the step and the position.
+        detail: String,
+    },
     /// A planned link keeps no line of sight however far its band is lowered (C1_13).
     #[error("step3: the {link} has no line of sight at step {k} after {rounds} rounds of lowering its range (C1_13): {why}")]
     LineOfSight {

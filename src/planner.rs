@@ -384,7 +384,8 @@ const GUESS_TURNS: [f64; 4] = [
 ];
 
 /// Whether a window's failure is one another first guess may avoid: a constraint the SCP left
-/// violated, a convex model with no feasible point, or a chain broken in the final plan.
+/// violated, a convex model with no feasible point, or a chain broken in the final plan (not
+/// an iteration limit, which every course meets alike).
 fn retried(e: &PlanError) -> bool {
     matches!(
         e,

@@ -77,6 +77,12 @@ pub trait ScpProblem {
     fn evaluate(&self, x: &Self::Iterate) -> Evaluation;
     /// An error for a constraint that stays violated at convergence with the largest penalty.
     fn infeasible(&self, x: &Self::Iterate) -> Self::Error;
+    /// An error for a constraint still violated when the loop stopped at its iteration limit
+    /// after `iterations` iterations (by default the same as [`infeasible`](Self::infeasible)).
+    fn unfinished(&self, x: &Self::Iterate, iterations: usize) -> Self::Error {
+        let _ = iterations;
+        self.infeasible(x)
+    }
     /// Whether `e`, from [`solve_model`](ScpProblem::solve_model), is the convex solver's
     /// numerical trouble with this model (not an infeasible model): the loop then treats the
     /// iteration as a rejected step and shrinks the trust region. None by default.
@@ -495,6 +501,8 @@ where
             iterations,
             solve_time_s: start.elapsed().as_secs_f64(),
         })
+    } else if have_feasible_reference && status == ScpStatus::MaxIterations {
+        Err(problem.unfinished(&reference, iterations))
     } else if have_feasible_reference {
         Err(problem.infeasible(&reference))
     } else {

@@ -224,6 +224,7 @@ mod random {
                     let explained = matches!(
                         e,
                         PlanError::Infeasible { .. }
+                            | PlanError::Unfinished { .. }
                             | PlanError::ConvexInfeasible { .. }
                             | PlanError::InvalidStart { .. }
                             | PlanError::NoInitialPosition(_)

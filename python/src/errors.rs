@@ -106,6 +106,7 @@ pub(crate) fn plan_failure(e: &PlanError) -> Failure {
         | PlanError::NoInitialPosition(_)
         | PlanError::ConvexInfeasible { .. }
         | PlanError::Infeasible { .. }
+        | PlanError::Unfinished { .. }
         | PlanError::LineOfSight { .. }
         | PlanError::Disconnected { .. }
         | PlanError::NoValidTree { .. }

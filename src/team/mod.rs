@@ -748,6 +748,22 @@ impl ScpProblem for TeamProblem<'_> {
             || matches!(e, PlanError::Inexact { .. })
     }
 
+    fn unfinished(&self, t: &Trajectory, iterations: usize) -> PlanError {
+        let limit = match (self.step(), self.scenario.scp.step1_max_iterations) {
+            (Step::One, Some(_)) => "scp.step1_max_iterations",
+            _ => "scp.max_iterations",
+        };
+        match self.infeasible(t) {
+            PlanError::Infeasible { step, detail } => PlanError::Unfinished {
+                step,
+                limit: limit.into(),
+                iterations,
+                detail,
+            },
+            other => other,
+        }
+    }
+
     fn infeasible(&self, t: &Trajectory) -> PlanError {
         let l = self.layout;
         let mut worst = (0.0, String::new());
