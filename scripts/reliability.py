@@ -211,14 +211,18 @@ class Harness:
             for _ in range(self.rng.choice([1, 1, 1, 2, 3])):
                 key = self.rng.choice(self.keys + ["nosuch.key", "team", "auv.", ".x", "seed"])
                 sets += ["--set", f"{key}={self.rng.choice(VALUES)}"]
-            args = ["plan", *base, "-o", "out", *sets]
-            rc, _, err, _ = self.run(args, d)
-            wrong = False
-            if rc == 0:
-                rc2, out2, err2, _ = self.run(["check", "out/plan.json"], d)
-                wrong = rc2 != 0
-            self.record("plan", "--set values", args, rc, err, wrong)
-            shutil.rmtree(d)
+            self.plan_then_check(["plan", *base, "-o", "out", *sets], d, "--set values")
+
+    def plan_then_check(self, args: list, d: Path, cls: str):
+        """Runs `shoal plan` with `args` in the sandbox `d`; a plan it writes must pass the check
+        of the written file (else a wrong verdict). Records the run and removes the sandbox."""
+        rc, _, err, _ = self.run(args, d)
+        wrong = False
+        if rc == 0:
+            rc2, _, _, _ = self.run(["check", "out/plan.json"], d)
+            wrong = rc2 != 0
+        self.record("plan", cls, args, rc, err, wrong)
+        shutil.rmtree(d)
 
     def scenario_files(self, count: int):
         lines = self.scenario_text.splitlines()
@@ -249,14 +253,8 @@ class Harness:
             text = "\n".join(mutated) + "\n"
             text = text.replace("auvs = 5", "auvs = 2").replace("steps = 20", "steps = 4")
             (d / "m.toml").write_text(text)
-            args = ["plan", "m.toml", "-q", "--no-plot", "-o", "out"]
-            rc, _, err, _ = self.run(args, d)
-            wrong = False
-            if rc == 0:
-                rc2, _, _, _ = self.run(["check", "out/plan.json"], d)
-                wrong = rc2 != 0
-            self.record("plan", "scenario files", args, rc, err, wrong)
-            shutil.rmtree(d)
+            self.plan_then_check(["plan", "m.toml", "-q", "--no-plot", "-o", "out"], d,
+                                 "scenario files")
 
     def feasible(self, count: int):
         """Random missions inside the documented ranges: each must plan (exit 0) and pass the
