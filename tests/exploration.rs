@@ -56,8 +56,9 @@ fn regression_a_team_of_ten_moves_as_far_as_five_and_explores_more() {
 /// OF1_8 paid a distance 17× less against the input energy it costs than on the paper's
 /// window of 20 steps of 100 s, and the USV ended 11 m from its start (13 of 37 draws had a
 /// window whose team barely moved). With `weights.w8_scaling = "energy"` the trade is the
-/// paper's window's, and the team makes its way: the same scenario with 3 AUVs goes 235 m
-/// (94 m per m²), the whole 186 m its AUVs can go, and sweeps 0.023 km² (0.011).
+/// paper's window's, and the team makes its way: the same scenario with 3 AUVs went 235 m
+/// (94 m per m²), the whole 186 m its AUVs can go, and swept 0.023 km² (0.011), before the
+/// separation, the links' margin and the current in the plan.
 #[test]
 fn regression_a_short_window_of_slow_auvs_barely_moved() {
     let mut s = team(3);
@@ -72,19 +73,15 @@ fn regression_a_short_window_of_slow_auvs_barely_moved() {
     let (scaled, _) = plan(&s);
     s.weights.w8_scaling = W8Scaling::None;
     let (per_m2, _) = plan(&s);
-    // (184 m with the separation and the links' margin, 0.99 of the reach; more before)
+    // the team goes its reach with OF1_8 weighed against the energy (184 m, 0.99 of it), and
+    // no less far nor over less ground than with OF1_8 per m² (with the separation, the
+    // links' margin and the current planned in, per m² now goes 184 m too; 0.6 of the reach
+    // or less before them)
+    let (a, b) = (usv_moved(&scaled, 0), usv_moved(&per_m2, 0));
+    assert!(a > 0.9 * reach, "{a}");
+    assert!(a >= b - 1.0, "{a} against {b}");
     assert!(
-        usv_moved(&scaled, 0) > 0.9 * reach,
-        "{}",
-        usv_moved(&scaled, 0)
-    );
-    assert!(
-        usv_moved(&per_m2, 0) < 0.6 * reach,
-        "{}",
-        usv_moved(&per_m2, 0)
-    );
-    assert!(
-        scaled.metrics.explored_area_km2 > 1.5 * per_m2.metrics.explored_area_km2,
+        scaled.metrics.explored_area_km2 >= 0.95 * per_m2.metrics.explored_area_km2,
         "{} against {}",
         scaled.metrics.explored_area_km2,
         per_m2.metrics.explored_area_km2
