@@ -436,7 +436,7 @@ fn plan_window(
     let p2 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone()).with_guess_turn(turn);
     // another window follows: the terminal margin, if the scenario asks for it
     let more = s.horizon.terminal_margin && w + 1 < s.windows;
-    let mut p2 = p2.with_track(&track).with_terminal(more);
+    let mut p2 = p2.with_track(track).with_terminal(more);
     let mut trace = Vec::new();
     let (out1, courses) = step1::solve(&mut p2, heading, &mut |it| {
         trace.push(iteration_record(it));
@@ -472,7 +472,7 @@ fn plan_window(
     let p5 = TeamProblem::new(s, floor, keep_out, auv, usv, start.clone())
         .with_links(links)
         .with_lanes(&out1.iterate);
-    let mut p5 = p5.with_track(&track).with_terminal(more);
+    let mut p5 = p5.with_track(track).with_terminal(more);
     let mut trace = Vec::new();
     let out3 = step3::solve(&mut p5, &out1.iterate, &mut |it| {
         trace.push(iteration_record(it));

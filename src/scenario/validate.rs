@@ -3,6 +3,11 @@
 
 use super::Scenario;
 
+/// The largest `auv.max_flight_path_angle` accepted, rad: π/2 as a user writes it, rounded up
+/// to 1.5708 (from `NO_ANGLE_LIMIT` on, no angle limit).
+#[allow(clippy::approx_constant)]
+const MAX_ANGLE: f64 = 1.5708;
+
 /// One broken rule: the dotted key at fault (array elements as `key[i]`), its value as written
 /// for a person, and what is allowed. `related` names other keys the rule involves (e.g.
 /// `acoustic.sonar_range` for `acoustic.max_range ≥ acoustic.sonar_range`); the loaders point at
@@ -318,7 +323,7 @@ pub fn validate(s: &Scenario) -> Result<(), Vec<Violation>> {
     c.float(
         "auv.max_flight_path_angle",
         v.max_flight_path_angle,
-        v.max_flight_path_angle > 0.0 && v.max_flight_path_angle <= 1.5708,
+        v.max_flight_path_angle > 0.0 && v.max_flight_path_angle <= MAX_ANGLE,
         "must be an angle in radians with 0 < value ≤ 1.5708 (π/2 rounded; from 1.57 on: no \
          limit, a vehicle that moves vertically at rest)",
     );

@@ -185,10 +185,11 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64, from: Option<f64>) -> 
         },
         v_min: s.auv.min_heading_speed,
     };
-    let floor = cruise
-        .on()
-        .then(|| cruise.waypoint_floor() * GUESS_FLOOR)
-        .unwrap_or(0.0);
+    let floor = if cruise.on() {
+        cruise.waypoint_floor() * GUESS_FLOOR
+    } else {
+        0.0
+    };
     let auv_u = problem
         .start
         .auvs
