@@ -185,8 +185,18 @@ def test_from_json_over_an_array_floor():
         shoal.Plan.from_json(p.to_json(), z - 1.0, lattice=lattice)
 
 
+# The paper's vehicle, which the sampling baseline plans for: no depth rating to speak of, no
+# angle limit, no cruise floor, no separation, still water, links up to d_s.
+PAPER_VEHICLE = {
+    "auv": {"max_depth": 1000.0, "max_flight_path_angle": 1.57, "min_speed": 0.0,
+            "min_separation": 0.0},
+    "current": {"velocity": [0.0, 0.0]},
+    "acoustic": {"link_margin": 1.0},
+}
+
+
 def test_the_rrt_like_baseline_plans_too():
-    p = shoal.plan({**SMALL, "horizon": {"steps": 3}}, method="rrt-like")
+    p = shoal.plan({**SMALL, **PAPER_VEHICLE, "horizon": {"steps": 3}}, method="rrt-like")
     assert p.method == "rrt-like"
     assert p.positions.shape == (4, 3, 3)
     assert p.check().passed
