@@ -223,8 +223,9 @@ fn assert_same_floor(label: &str, a: &Seafloor, b: &Seafloor) {
     assert_eq!(a.obstacle_counts(), b.obstacle_counts(), "{label}");
 }
 
-/// Speeds for the small survey grid (as tests/geo_plan.rs plans over it).
-const SLOW: &[&str] = &["auv.max_speed=0.5", "usv.max_speed=0.3"];
+/// Speeds for the small survey grid (as tests/geo_plan.rs plans over it): a slow vehicle, no
+/// cruise floor.
+const SLOW: &[&str] = &["auv.max_speed=0.5", "auv.min_speed=0", "usv.max_speed=0.3"];
 
 /// [`common::small`] over `floor`, read with the sign convention `values`.
 fn small_with(floor: &Path, values: Values, extra: &[&str]) -> Scenario {
