@@ -116,8 +116,7 @@ fn formation(problem: &TeamProblem, dir: f64, speed: f64, from: Option<f64>) -> 
     let course = |k: usize| match from {
         Some(h0) => {
             let turn = TURN_SHARE * s.auv.max_heading_rate * dt * (k + 1) as f64;
-            let delta = (dir - h0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
-                - std::f64::consts::PI;
+            let delta = wrap(dir - h0);
             h0 + delta.clamp(-turn, turn)
         }
         None => dir,
@@ -268,6 +267,12 @@ fn inset_clamp(q: f64, p: f64, lo: f64, hi: f64) -> f64 {
     }
 }
 
+/// An angle brought into [−π, π), rad.
+fn wrap(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    (a + PI).rem_euclid(TAU) - PI
+}
+
 /// Share of ψ̇_max·δ by which an AUV of the guess turns a step, at most.
 const TURN_SHARE: f64 = 0.9;
 
@@ -288,8 +293,7 @@ fn turned(want: [f64; 2], was: [f64; 2], turn: TurnLimit, floor: f64) -> [f64; 2
         return want;
     }
     let from = was[1].atan2(was[0]);
-    let mut delta = want[1].atan2(want[0]) - from;
-    delta = (delta + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+    let delta = wrap(want[1].atan2(want[0]) - from);
     if delta.abs() <= turn.angle {
         return want;
     }
